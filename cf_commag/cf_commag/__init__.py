@@ -1,0 +1,1 @@
+"""cf_commag: the ComMAg lifecycle node, the TCP socket gateway and the agent runtime (client.py)."""

@@ -1,0 +1,499 @@
+"""The agent runtime: what makes an rclpy node a component of the Common Framework.
+
+    node = rclpy.create_node("blue_7_action")
+    agent = Agent(node, name="blue_7_action", service_class="Action", team="blue", player_number=7)
+    agent.serve("fipa-request", on_request)        # answer requests
+    future = agent.request("blue_7_perception", "(val Game time)", protocol="fipa-query")
+
+An :class:`Agent` registers with the ComMAg and renews its lease on a timer
+(twice per lease, so one late renewal is not a missed lease), deregisters on
+``close()``, and owns an inbox: ACL messages in FIPA string form as
+``std_msgs/String`` on ``/cf/agents/<name>/inbox``. It runs the cf_lang
+conversation protocols on real messages (futures resolve on the final
+answer or on the reply-by timeout), keeps a lookup cache fed by the ComMAg's
+latched registry snapshot, and picks the best live provider for each request,
+so a withdrawn or suspect provider is replaced by its redundant twin.
+
+Inboxes use reliable, KEEP_ALL QoS: a fast sender is slowed down instead of
+having messages dropped.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import time
+import uuid
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+
+from cf_lang.acl import AclMessage, AgentId, Performative
+from cf_lang.protocols import Conversation, ConversationTable
+from cf_lang.taxonomy import Direction
+from rclpy._rclpy_pybind11 import RCLError
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.task import Future
+from std_msgs.msg import String
+
+from cf_interfaces.msg import ComponentRecord, KeyValue
+from cf_interfaces.msg import Registry as RegistryMsg
+from cf_interfaces.srv import Deregister, Lookup, Register
+from cf_lang import LanguageError, acl, dumps, protocols
+
+from .convert import entry_from_msg
+from .records import Directory, Entry, Query, valid_agent_name
+from .registry import INCARNATION_KEY
+
+INBOX_QOS = QoSProfile(
+    history=HistoryPolicy.KEEP_ALL,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.VOLATILE,
+)
+SNAPSHOT_QOS = QoSProfile(
+    depth=1,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.TRANSIENT_LOCAL,
+    history=HistoryPolicy.KEEP_LAST,
+)
+
+
+def inbox_topic(name: str) -> str:
+    """The topic on which agent ``name`` receives its ACL messages."""
+    return f"/cf/agents/{name}/inbox"
+
+
+class Refuse(Exception):
+    """Raise from a handler to answer ``refuse`` with this reason."""
+
+
+class Failure(Exception):
+    """Raise from a handler to answer ``failure`` with this reason."""
+
+
+@dataclass(frozen=True)
+class Reply:
+    """How a conversation ended: its final state and the last message (None on timeout)."""
+
+    state: str
+    message: AclMessage | None
+
+    @property
+    def ok(self) -> bool:
+        return self.state == "done"
+
+    @property
+    def content(self) -> str | None:
+        return self.message.content if self.message else None
+
+
+class Responder:
+    """The answering side of one conversation, handed to a handler."""
+
+    def __init__(self, agent: Agent, conv: Conversation, request: AclMessage):
+        self._agent = agent
+        self.conversation = conv
+        self.request = request
+        self.on_cancel: Callable[[], None] | None = None
+
+    @property
+    def open(self) -> bool:
+        return not self.conversation.finished and self.conversation.state != "cancelling"
+
+    def _send(self, performative: Performative, content: str | None) -> None:
+        msg = self.conversation.send(performative, content, now=time.monotonic())
+        self._agent.send(msg)
+        if self.conversation.finished:
+            self._agent._responders.pop(self.conversation.conversation_id, None)
+
+    def agree(self, content: str | None = None) -> None:
+        self._send(Performative.AGREE, content)
+
+    def inform(self, content: str | None = None) -> None:
+        self._send(Performative.INFORM, content)
+
+    def refuse(self, reason: str) -> None:
+        self._send(Performative.REFUSE, _reason(self.request, reason))
+
+    def failure(self, reason: str) -> None:
+        self._send(Performative.FAILURE, _reason(self.request, reason))
+
+
+def _reason(request: AclMessage, reason: str) -> str:
+    """Content of refuse/failure, as FIPA has it: the action refused and why, ``("<content>" "<reason>")``."""
+    return dumps([request.content or "", reason])
+
+
+Handler = Callable[[AclMessage, Responder], str | None]
+
+
+class Agent:
+    """Registration, inbox, conversations and lookups for one component."""
+
+    def __init__(
+        self,
+        node: Node,
+        *,
+        name: str,
+        service_class: str,
+        launch_command: Iterable[str] = (),
+        team: str = "",
+        player_number: int = 0,
+        lease: float = 1.0,
+        commag: str = "/commag",
+        address: str = "",
+        port: int = 0,
+        transport: str = "ros",
+        metadata: dict[str, str] | None = None,
+        register: bool = True,
+        on_message: Callable[[AclMessage], None] | None = None,
+    ):
+        if not valid_agent_name(name):
+            raise ValueError(f"agent name {name!r} must match [A-Za-z][A-Za-z0-9_]*")
+        self.node = node
+        self.me = AgentId(name)
+        self.record = ComponentRecord(
+            name=name,
+            address=address,
+            port=port,
+            service_class=service_class,
+            launch_command=list(launch_command),
+            lease_period=float(lease),
+            team=team,
+            player_number=player_number,
+            transport=transport,
+            languages=["cf-lang"],
+            ontologies=["robocup-soccer"],
+            metadata=[
+                KeyValue(key=k, value=v)
+                for k, v in {**(metadata or {}), INCARNATION_KEY: f"{os.getpid()}-{uuid.uuid4().hex[:12]}"}.items()
+            ],
+        )
+        self.registered = False
+        self.last_register_reason = ""
+        self.on_message = on_message
+        self.counters = {"received": 0, "sent": 0, "bad": 0}
+        self._log = node.get_logger()
+        self._table = ConversationTable()
+        self._futures: dict[str, tuple[Future, Callable | None]] = {}
+        self._responders: dict[str, Responder] = {}
+        self._handlers: dict[str, Handler] = {}
+        self._publishers: dict[str, object] = {}
+        self._directory = Directory()
+        self._directory_stamp = 0.0
+        self._pending_register: Future | None = None
+        self._pending_since = 0.0
+        self._closed = False
+
+        self._inbox = node.create_subscription(String, inbox_topic(name), self._on_inbox, INBOX_QOS)
+        self._register_client = node.create_client(Register, f"{commag}/register")
+        self._deregister_client = node.create_client(Deregister, f"{commag}/deregister")
+        self._lookup_client = node.create_client(Lookup, f"{commag}/lookup")
+        self._snapshot_sub = node.create_subscription(
+            RegistryMsg, f"{commag}/registry", self._on_snapshot, SNAPSHOT_QOS
+        )
+        self._timers = [node.create_timer(0.05, self._on_expire_timer)]
+        if register:
+            # Three renewals per lease: one late or lost renewal is not a missed lease.
+            self._timers.append(node.create_timer(max(0.02, lease / 3.0), self._renew))
+            self._first = node.create_timer(0.05, self._register_first)
+            self._timers.append(self._first)
+
+    # ---- registration ------------------------------------------------------
+
+    def _register_first(self) -> None:
+        """Retry quickly until the first registration is through (discovery takes a moment)."""
+        if self.registered:
+            self._first.cancel()
+            return
+        self._renew()
+
+    def _renew(self) -> None:
+        now = time.monotonic()
+        if self._pending_register is not None and not self._pending_register.done():
+            if now - self._pending_since < 2 * self.record.lease_period:
+                return
+            self._pending_register.cancel()  # the ComMAg was away; ask again
+        if not self._register_client.service_is_ready():
+            return
+        self._pending_since = now
+        self._pending_register = self._register_client.call_async(Register.Request(component=self.record))
+        self._pending_register.add_done_callback(self._on_registered)
+
+    def _on_registered(self, future: Future) -> None:
+        if future.cancelled() or future.exception() is not None:
+            return
+        response = future.result()
+        if not response.accepted:
+            self._log.error(f"registration refused: {response.reason}", throttle_duration_sec=5.0)
+        self.registered = response.accepted
+        self.last_register_reason = response.reason
+
+    def close(self) -> Future | None:
+        """Stop renewing and deregister (so the ComMAg does not relaunch us).
+
+        Returns a future that is done once the ComMAg answered (spin until it
+        is done to be sure), or None if there was nothing to deregister. A
+        renewal still in flight is answered first, so it cannot re-register
+        us after the deregistration.
+        """
+        if self._closed:
+            return None
+        self._closed = True
+        done = Future()
+        try:
+            for timer in self._timers:
+                self.node.destroy_timer(timer)
+            if not self._deregister_client.service_is_ready():
+                return None
+        except RCLError:  # the context is already shut down: nothing more we can say
+            return None
+
+        def deregister(_=None):
+            try:
+                answer = self._deregister_client.call_async(Deregister.Request(name=self.me.name))
+                answer.add_done_callback(lambda f: done.set_result(True))
+            except RCLError:
+                done.set_result(False)
+
+        pending = self._pending_register
+        if pending is not None and not pending.done():
+            pending.add_done_callback(deregister)
+        else:
+            deregister()
+        self.registered = False
+        return done
+
+    # ---- lookups -----------------------------------------------------------
+
+    def _on_snapshot(self, msg: RegistryMsg) -> None:
+        directory = Directory()
+        for rec in msg.records:
+            try:
+                directory.put(entry_from_msg(rec))
+            except ValueError:
+                continue
+        self._directory = directory
+        self._directory_stamp = time.monotonic()
+
+    def providers(
+        self,
+        service_class: str,
+        *,
+        direction: Direction = Direction.GENERAL,
+        team: str = "",
+        player_number: int = 0,
+        include_suspect: bool = False,
+        exclude: Iterable[str] = (),
+    ) -> list[Entry]:
+        """Providers from the local cache, best first (healthy, nearest class)."""
+        query = Query(service_class, direction, team, player_number, include_suspect)
+        skip = set(exclude)
+        return [e for e, _ in self._directory.search(query) if e.name not in skip]
+
+    def provider(self, service_class: str, **filters) -> str | None:
+        """The best live provider's name, or None. Call it per request: that is the failover."""
+        found = self.providers(service_class, **filters)
+        return found[0].name if found else None
+
+    def lookup(self, service_class: str, **fields) -> Future:
+        """Ask the ComMAg itself (authoritative); the future gives a Lookup.Response."""
+        request = Lookup.Request(service_class=service_class, **fields)
+        return self._lookup_client.call_async(request)
+
+    # ---- sending -----------------------------------------------------------
+
+    def send(self, msg: AclMessage) -> None:
+        """Publish a message to each receiver's inbox."""
+        text = acl.to_text(msg if msg.sender else msg.with_(sender=self.me))
+        for receiver in msg.receivers:
+            pub = self._publishers.get(receiver.name)
+            if pub is None:
+                if not valid_agent_name(receiver.name):
+                    self._log.warning(f"cannot send to {receiver.name!r}: not an agent name")
+                    continue
+                pub = self.node.create_publisher(String, inbox_topic(receiver.name), INBOX_QOS)
+                self._publishers[receiver.name] = pub
+            pub.publish(String(data=text))
+            self.counters["sent"] += 1
+
+    def request(
+        self,
+        receiver: str,
+        content: str,
+        *,
+        protocol: str = "fipa-request",
+        timeout: float | None = 1.0,
+        on_update: Callable[[AclMessage], None] | None = None,
+    ) -> Future:
+        """Start a conversation; the future resolves to a :class:`Reply`.
+
+        ``on_update`` sees intermediate messages (agree, and each inform of a
+        subscription). For ``fipa-subscribe`` the future resolves when the
+        subscription ends; use :meth:`cancel` to end it.
+        """
+        conv, first = protocols.initiate(
+            protocol, me=self.me, peer=AgentId(receiver), content=content, now=time.monotonic(), timeout=timeout
+        )
+        future = Future()
+        self._table.add(conv)
+        self._futures[conv.conversation_id] = (future, on_update)
+        future.conversation_id = conv.conversation_id
+        self.send(first)
+        return future
+
+    def cancel(self, future: Future) -> None:
+        """Cancel a subscription started with :meth:`request`."""
+        conv = self._table.get(getattr(future, "conversation_id", ""))
+        if conv is not None and conv.state in ("subscribing", "subscribed"):
+            self.send(conv.send(Performative.CANCEL, None, now=time.monotonic()))
+
+    # ---- receiving ---------------------------------------------------------
+
+    def serve(self, protocol: str, handler: Handler) -> None:
+        """Answer conversations of ``protocol`` that others open with us.
+
+        The handler gets the opening message and a :class:`Responder`. It may
+        answer through the responder (now or later), or return a content string
+        (sent as inform), or raise Refuse/Failure.
+        """
+        if protocol not in protocols.PROTOCOLS:
+            raise ValueError(f"unknown protocol {protocol!r}")
+        self._handlers[protocol] = handler
+
+    def _on_inbox(self, msg: String) -> None:
+        self.counters["received"] += 1
+        try:
+            message = acl.parse(msg.data)
+        except LanguageError as exc:
+            self.counters["bad"] += 1
+            self._log.warning(f"unreadable message: {exc}", throttle_duration_sec=2.0)
+            return
+        try:
+            self._dispatch(message)
+        except Exception as exc:  # a bad message must never stop the agent
+            self.counters["bad"] += 1
+            self._log.error(f"while handling a message: {exc!r}", throttle_duration_sec=2.0)
+
+    def _dispatch(self, message: AclMessage) -> None:
+        now = time.monotonic()
+        cid = message.conversation_id or ""
+        if cid in self._table:
+            try:
+                conv = self._table.dispatch(message, now=now)
+            except LanguageError as exc:
+                self.send(protocols.not_understood(message, str(exc), me=self.me))
+                return
+            future, on_update = self._futures.get(cid, (None, None))
+            if conv.finished:
+                self._futures.pop(cid, None)
+                if future is not None and not future.done():
+                    future.set_result(Reply(conv.state, message))
+            elif on_update is not None:
+                on_update(message)
+            return
+        responder = self._responders.get(cid)
+        if responder is not None:
+            try:
+                responder.conversation.receive(message, now=now)
+            except LanguageError as exc:
+                self.send(protocols.not_understood(message, str(exc), me=self.me))
+                return
+            if responder.conversation.state == "cancelling":
+                if responder.on_cancel is not None:
+                    responder.on_cancel()
+                responder.inform(None)
+            return
+        if message.performative in (
+            Performative.REQUEST,
+            Performative.QUERY_REF,
+            Performative.QUERY_IF,
+            Performative.SUBSCRIBE,
+        ):
+            self._open(message, now)
+            return
+        if message.performative is Performative.NOT_UNDERSTOOD:
+            return  # never answer not-understood with not-understood
+        if self.on_message is not None:
+            self.on_message(message)
+            return
+        self.send(protocols.not_understood(message, "no open conversation for this message", me=self.me))
+
+    def _open(self, message: AclMessage, now: float) -> None:
+        try:
+            acl.check_content(message)
+            conv = protocols.respond(message, me=self.me, now=now)
+        except LanguageError as exc:
+            self.send(protocols.not_understood(message, str(exc), me=self.me))
+            return
+        handler = self._handlers.get(conv.spec.name)
+        responder = Responder(self, conv, message)
+        if handler is None:
+            responder.refuse(f"{self.me.name} does not serve {conv.spec.name}")
+            return
+        self._responders[conv.conversation_id] = responder
+        try:
+            result = handler(message, responder)
+        except Refuse as exc:
+            if responder.open:
+                responder.refuse(str(exc))
+            return
+        except (Failure, LanguageError) as exc:
+            if responder.open:
+                responder.failure(str(exc))
+            return
+        except Exception as exc:
+            if responder.open:
+                responder.failure(f"internal error: {exc!r}")
+            raise
+        if result is not None and responder.open:
+            responder.inform(result)
+
+    def _on_expire_timer(self) -> None:
+        for conv in self._table.expire(time.monotonic()):
+            future, _ = self._futures.pop(conv.conversation_id, (None, None))
+            if future is not None and not future.done():
+                future.set_result(Reply("timed-out", None))
+
+
+def spin(node: Node, agents: Iterable[Agent] = (), *, executor=None) -> None:
+    """Spin until SIGINT or SIGTERM, then deregister the agents cleanly and shut down.
+
+    Call ``rclpy.init(signal_handler_options=SignalHandlerOptions.NO)`` first
+    (as :func:`init` does), so the context is still alive to deregister.
+    """
+    import signal
+
+    import rclpy
+
+    def _stop(signum, frame):
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, _stop)
+    signal.signal(signal.SIGINT, _stop)
+    try:
+        if executor is None:
+            rclpy.spin(node)
+        else:
+            executor.spin()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        for agent in agents:
+            future = agent.close()
+            if future is not None:
+                with contextlib.suppress(Exception):  # shutting down anyway
+                    rclpy.spin_until_future_complete(node, future, timeout_sec=1.0)
+        node.destroy_node()
+        rclpy.try_shutdown()
+
+
+def init(args: list[str] | None = None) -> None:
+    """rclpy.init without rclpy's signal handlers, for use with :func:`spin`."""
+    import rclpy
+    from rclpy.signals import SignalHandlerOptions
+
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)

@@ -1,0 +1,317 @@
+"""The ComMAg as an rclpy lifecycle node: a thin shell around :class:`Registry`."""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+import rclpy
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.executors import ExternalShutdownException
+from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+from cf_interfaces.msg import Registry as RegistryMsg
+from cf_interfaces.msg import RegistryEvent
+from cf_interfaces.srv import Deregister, Lookup, Register
+
+from . import store
+from .convert import event_to_msg, to_msg, to_query, to_record
+from .launcher import Launcher, LaunchPolicy, workspace_roots
+from .records import EventKind, State
+from .registry import Event, Registry, RegistryConfig
+
+EVENTS_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
+SNAPSHOT_QOS = QoSProfile(
+    depth=1,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.TRANSIENT_LOCAL,
+    history=HistoryPolicy.KEEP_LAST,
+)
+_LEVEL = {
+    State.HEALTHY: DiagnosticStatus.OK,
+    State.SUSPECT: DiagnosticStatus.WARN,
+    State.RELAUNCHING: DiagnosticStatus.WARN,
+    State.WITHDRAWN: DiagnosticStatus.ERROR,
+}
+
+
+def _ros_home() -> Path:
+    return Path(os.environ.get("ROS_HOME", Path.home() / ".ros"))
+
+
+class CommagConfig(BaseModel):
+    """The ComMAg's parameters, read once in on_configure."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    default_lease: float = Field(1.0, gt=0, description="lease (s) for components that do not ask for one")
+    startup_grace: float = Field(5.0, gt=0, description="seconds a relaunched component has to re-register")
+    max_failures: int = Field(3, ge=1, description="consecutive failed launches before withdrawal")
+    backoff_initial: float = Field(0.5, ge=0, description="delay (s) after the first failed launch; doubles each time")
+    backoff_max: float = Field(8.0, ge=0, description="cap (s) on the delay between launch attempts")
+    stable_period: float = Field(30.0, ge=0, description="seconds healthy before the failure count resets")
+    tick_period: float = Field(0.05, gt=0, le=1.0, description="how often (s) leases are checked")
+    allowed_roots: tuple[str, ...] = Field((), description="directories whose executables may be launched")
+    allowed_commands: tuple[str, ...] = Field((), description="further executables (absolute paths) allowed")
+    persistence_path: str = Field("", description="registry file; empty = <ROS_HOME>/cf_commag/registry.json")
+    log_dir: str = Field("", description="component output logs; empty = <ROS_HOME>/log/cf_commag")
+    publish_renewals: bool = Field(False, description="also publish an event for every plain renewal")
+    diagnostics_period: float = Field(1.0, gt=0, description="seconds between /diagnostics messages")
+
+
+class CommagNode(LifecycleNode):
+    """The Communication Management Agent (paper, section 3).
+
+    Parameters: see CommagConfig (each declared with its description), plus
+    ``autostart`` (bool, default true: configure and activate at start-up).
+
+    Services: ``~/register`` (Register), ``~/deregister`` (Deregister),
+    ``~/lookup`` (Lookup). Topics: ``~/events`` (RegistryEvent),
+    ``~/registry`` (Registry, transient local: late joiners get the latest),
+    ``/diagnostics`` (DiagnosticArray, one status per component).
+    Services answer "not active" unless the node is active.
+    """
+
+    def __init__(self, node_name: str = "commag", **kwargs):
+        super().__init__(node_name, **kwargs)
+        for name, info in CommagConfig.model_fields.items():
+            default = info.default
+            if isinstance(default, tuple):
+                default = list(default) or [""]
+            self.declare_parameter(name, default, ParameterDescriptor(description=info.description or ""))
+        self.declare_parameter("autostart", True, ParameterDescriptor(description="configure and activate at start"))
+        self._active = False
+        self._registry: Registry | None = None
+        self._launcher: Launcher | None = None
+        self._timers = []
+        self._services = []
+        self._store_path: Path | None = None
+        self._last_diag = 0.0
+
+    # ---- lifecycle ---------------------------------------------------------
+
+    def _read_config(self) -> CommagConfig:
+        values = {}
+        for name, info in CommagConfig.model_fields.items():
+            value = self.get_parameter(name).value
+            if isinstance(info.default, tuple):
+                value = tuple(v for v in (value or []) if v)
+            values[name] = value
+        return CommagConfig(**values)
+
+    def on_configure(self, state: LifecycleState) -> TransitionCallbackReturn:
+        try:
+            cfg = self._read_config()
+        except ValidationError as exc:
+            self.get_logger().error(f"invalid parameters: {exc}")
+            return TransitionCallbackReturn.FAILURE
+        self._cfg = cfg
+        roots = cfg.allowed_roots or workspace_roots()
+        policy = LaunchPolicy(allowed_roots=roots, allowed_commands=cfg.allowed_commands)
+        log_dir = Path(cfg.log_dir) if cfg.log_dir else _ros_home() / "log" / "cf_commag"
+        self._launcher = Launcher(policy=policy, log_dir=log_dir)
+        self._registry = Registry(
+            RegistryConfig(
+                default_lease=cfg.default_lease,
+                startup_grace=cfg.startup_grace,
+                max_failures=cfg.max_failures,
+                backoff_initial=cfg.backoff_initial,
+                backoff_max=cfg.backoff_max,
+                stable_period=cfg.stable_period,
+            ),
+            launch=lambda record: self._launcher.launch(record.name, record.launch_command),
+            check_launch=policy.check,
+        )
+        self._store_path = (
+            Path(cfg.persistence_path) if cfg.persistence_path else _ros_home() / "cf_commag" / "registry.json"
+        )
+        try:
+            restored = self._registry.restore(store.load(self._store_path), now=time.monotonic())
+        except (ValueError, KeyError, TypeError) as exc:
+            self.get_logger().error(f"cannot restore the registry: {exc}")
+            return TransitionCallbackReturn.FAILURE
+        self._registry.changed = False
+        self.get_logger().info(
+            f"configured: {restored} component(s) restored from {self._store_path}; "
+            f"launch allowlist roots={list(roots)} commands={list(cfg.allowed_commands)}"
+        )
+        self._events_pub = self.create_lifecycle_publisher(RegistryEvent, "~/events", EVENTS_QOS)
+        self._snapshot_pub = self.create_lifecycle_publisher(RegistryMsg, "~/registry", SNAPSHOT_QOS)
+        self._diag_pub = self.create_lifecycle_publisher(DiagnosticArray, "/diagnostics", 10)
+        self._services = [
+            self.create_service(Register, "~/register", self._on_register),
+            self.create_service(Deregister, "~/deregister", self._on_deregister),
+            self.create_service(Lookup, "~/lookup", self._on_lookup),
+        ]
+        return super().on_configure(state)
+
+    def on_activate(self, state: LifecycleState) -> TransitionCallbackReturn:
+        result = super().on_activate(state)
+        self._active = True
+        self._timers = [self.create_timer(self._cfg.tick_period, self._on_tick)]
+        self._publish_snapshot()
+        self.get_logger().info("active")
+        return result
+
+    def on_deactivate(self, state: LifecycleState) -> TransitionCallbackReturn:
+        self._active = False
+        for timer in self._timers:
+            self.destroy_timer(timer)
+        self._timers = []
+        self._save()
+        return super().on_deactivate(state)
+
+    def on_cleanup(self, state: LifecycleState) -> TransitionCallbackReturn:
+        for srv in self._services:
+            self.destroy_service(srv)
+        self._services = []
+        for pub in (self._events_pub, self._snapshot_pub, self._diag_pub):
+            self.destroy_lifecycle_publisher(pub)
+        self._registry = None
+        return TransitionCallbackReturn.SUCCESS
+
+    def on_shutdown(self, state: LifecycleState) -> TransitionCallbackReturn:
+        self._active = False
+        self._save()
+        return TransitionCallbackReturn.SUCCESS
+
+    # ---- services ----------------------------------------------------------
+
+    def _on_register(self, request: Register.Request, response: Register.Response) -> Register.Response:
+        if not self._active:
+            response.accepted, response.reason = False, "ComMAg is not active"
+            return response
+        try:
+            result, events = self._registry.register(to_record(request.component), now=time.monotonic())
+        except (ValueError, TypeError) as exc:
+            response.accepted, response.reason = False, f"bad record: {exc}"
+            return response
+        response.accepted, response.reason, response.lease_period = result.accepted, result.reason, result.lease
+        self._emit(events)
+        return response
+
+    def _on_deregister(self, request: Deregister.Request, response: Deregister.Response) -> Deregister.Response:
+        if not self._active:
+            response.accepted, response.reason = False, "ComMAg is not active"
+            return response
+        result, events = self._registry.deregister(request.name, now=time.monotonic())
+        response.accepted, response.reason = result.accepted, result.reason
+        self._emit(events)
+        return response
+
+    def _on_lookup(self, request: Lookup.Request, response: Lookup.Response) -> Lookup.Response:
+        if not self._active:
+            response.ok, response.reason = False, "ComMAg is not active"
+            return response
+        try:
+            entries = self._registry.lookup(to_query(request))
+        except ValueError as exc:
+            response.ok, response.reason = False, str(exc)
+            return response
+        response.ok, response.reason = True, f"{len(entries)} provider(s)"
+        response.providers = [to_msg(e.record, e) for e in entries]
+        return response
+
+    # ---- periodic work -----------------------------------------------------
+
+    def _on_tick(self) -> None:
+        try:
+            now = time.monotonic()
+            events = []
+            for name, code in self._launcher.poll():
+                events += self._registry.launch_exited(name, code, now=now)
+            events += self._registry.tick(now)
+            self._emit(events)
+            if now - self._last_diag >= self._cfg.diagnostics_period:
+                self._last_diag = now
+                self._publish_diagnostics()
+        except Exception as exc:  # keep supervising whatever one tick hit
+            self.get_logger().error(f"tick failed: {exc!r}", throttle_duration_sec=5.0)
+
+    def _emit(self, events: list[Event]) -> None:
+        stamp = self.get_clock().now().to_msg()
+        for event in events:
+            if event.kind is EventKind.RENEWED and event.reason == "renewed" and not self._cfg.publish_renewals:
+                continue
+            if event.kind is not EventKind.RENEWED:
+                self.get_logger().info(f"{event.record.name}: {event.kind.name.lower()} ({event.reason})")
+            self._events_pub.publish(event_to_msg(event, stamp))
+        if self._registry.changed:
+            self._save()
+            self._publish_snapshot()
+
+    def _save(self) -> None:
+        if self._registry is None or self._store_path is None:
+            return
+        try:
+            store.save(self._store_path, self._registry.dump())
+            self._registry.changed = False
+        except OSError as exc:
+            self.get_logger().error(f"cannot save the registry: {exc}", throttle_duration_sec=10.0)
+
+    def _publish_snapshot(self) -> None:
+        msg = RegistryMsg(stamp=self.get_clock().now().to_msg())
+        msg.records = [to_msg(e.record, e) for e in self._registry.directory.entries()]
+        self._snapshot_pub.publish(msg)
+
+    def _publish_diagnostics(self) -> None:
+        entries = self._registry.directory.entries()
+        array = DiagnosticArray()
+        array.header.stamp = self.get_clock().now().to_msg()
+        counts = {state: 0 for state in State}
+        for entry in entries:
+            counts[entry.state] += 1
+            rec = entry.record
+            array.status.append(
+                DiagnosticStatus(
+                    level=_LEVEL[entry.state],
+                    name=f"commag: {rec.name}",
+                    message=entry.state.value,
+                    hardware_id=rec.address or rec.transport.value,
+                    values=[
+                        KeyValue(key="service_class", value=rec.service_class),
+                        KeyValue(key="team", value=rec.team),
+                        KeyValue(key="player_number", value=str(rec.player_number)),
+                        KeyValue(key="failures", value=str(entry.failures)),
+                        KeyValue(key="launches", value=str(entry.launches)),
+                    ],
+                )
+            )
+        worst = DiagnosticStatus.WARN if counts[State.SUSPECT] or counts[State.RELAUNCHING] else DiagnosticStatus.OK
+        array.status.insert(
+            0,
+            DiagnosticStatus(
+                level=worst,
+                name="commag",
+                message=", ".join(f"{n} {s.value}" for s, n in counts.items()),
+                values=[KeyValue(key=s.value, value=str(n)) for s, n in counts.items()],
+            ),
+        )
+        self._diag_pub.publish(array)
+
+
+def main(args: list[str] | None = None) -> int:
+    """Entry point of ``ros2 run cf_commag commag``."""
+    rclpy.init(args=args if args is not None else sys.argv)
+    node = CommagNode()
+    try:
+        if node.get_parameter("autostart").value:
+            node.trigger_configure()
+            node.trigger_activate()
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node._save()
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,265 @@
+"""The ComMAg's registry: leases, relaunch, back-off and withdrawal (paper, 3.1). ROS-free.
+
+States of a component::
+
+    healthy --lease missed--> suspect --launch started--> relaunching --re-registered--> healthy
+                                 ^                            |
+                                 +----launch failed (back-off)+--N failures--> withdrawn
+
+A launch fails if the launcher refuses or cannot start it, if the process
+exits, or if it does not re-register within the start-up grace. Attempts back
+off exponentially (capped); the failure count resets once a component has
+stayed healthy for the stable period. A component without a launch command is
+withdrawn once it has been silent for ``max_failures`` more leases. Withdrawn
+components stay visible in the registry (and can come back by registering) but
+are never returned by lookups.
+
+Time is passed in as ``now`` (seconds, monotonic); side effects go through
+the injected ``launch`` callable.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from .records import Directory, Entry, EventKind, Query, Record, State, check_record
+
+HISTORY_LIMIT = 50
+CLOSED_INCARNATIONS = 10_000
+INCARNATION_KEY = "incarnation"
+
+
+def incarnation(record: Record) -> str:
+    """The process incarnation a record's metadata names ("" if none)."""
+    return next((v for k, v in record.metadata if k == INCARNATION_KEY), "")
+
+
+class LaunchError(Exception):
+    """The launcher could not (or would not) start a component."""
+
+
+@dataclass(frozen=True)
+class RegistryConfig:
+    default_lease: float = 1.0
+    min_lease: float = 0.05
+    max_lease: float = 300.0
+    startup_grace: float = 5.0
+    max_failures: int = 3
+    backoff_initial: float = 0.5
+    backoff_max: float = 8.0
+    stable_period: float = 30.0
+    max_components: int = 100_000
+
+
+@dataclass(frozen=True)
+class Event:
+    kind: EventKind
+    record: Record
+    state: State
+    failures: int
+    reason: str
+    at: float
+
+
+@dataclass(frozen=True)
+class Result:
+    accepted: bool
+    reason: str
+    lease: float = 0.0
+
+
+class Registry:
+    """Registration, renewal, lookup and fault management of components."""
+
+    def __init__(
+        self,
+        config: RegistryConfig | None = None,
+        *,
+        launch: Callable[[Record], None] | None = None,
+        check_launch: Callable[[tuple[str, ...]], str | None] | None = None,
+    ):
+        self.config = config or RegistryConfig()
+        self._launch = launch
+        self._check_launch = check_launch
+        self.directory = Directory()
+        # Incarnations that deregistered: a renewal of theirs still in flight must
+        # not bring them back. A restarted process has a new incarnation.
+        self._closed: OrderedDict[str, None] = OrderedDict()
+        self.changed = False
+        """True after a change worth persisting; the owner clears it after saving."""
+
+    # ---- registration -------------------------------------------------------
+
+    def register(self, record: Record, *, now: float) -> tuple[Result, list[Event]]:
+        """Register or renew; a repeat with the same name is a renewal."""
+        cfg = self.config
+        reason = check_record(record, min_lease=cfg.min_lease, max_lease=cfg.max_lease)
+        if reason is None and record.launch_command and self._check_launch is not None:
+            refused = self._check_launch(record.launch_command)
+            if refused:
+                reason = f"launch command refused: {refused}"
+        if reason is None and incarnation(record) in self._closed:
+            reason = "this incarnation has deregistered; a new process registers under a new incarnation"
+        if reason is not None:
+            return Result(False, reason), []
+        lease = record.lease_period or cfg.default_lease
+        entry = self.directory.get(record.name)
+        if entry is None:
+            if len(self.directory) >= cfg.max_components:
+                return Result(False, f"registry full ({cfg.max_components} components)"), []
+            entry = Entry(record=record, lease=lease, last_renewal=now, healthy_since=now)
+            self.directory.put(entry)
+            self.changed = True
+            return Result(True, "registered", lease), [self._event(entry, EventKind.REGISTERED, "registered", now)]
+
+        if entry.record != record:
+            entry.record = record
+            self.directory.put(entry)
+            self.changed = True
+        entry.lease = lease
+        entry.last_renewal = now
+        previous = entry.state
+        if previous is State.HEALTHY:
+            if entry.failures and now - entry.healthy_since >= cfg.stable_period:
+                entry.failures = 0
+                self.changed = True
+            return Result(True, "renewed", lease), [self._event(entry, EventKind.RENEWED, "renewed", now, log=False)]
+        self._set(entry, State.HEALTHY, now)
+        entry.healthy_since = now
+        if previous is State.RELAUNCHING:
+            took = now - entry.launch_started_at
+            return Result(True, "renewed", lease), [
+                self._event(entry, EventKind.RELAUNCHED, f"relaunched and re-registered after {took:.2f} s", now)
+            ]
+        if previous is State.WITHDRAWN:
+            entry.failures = 0
+            return Result(True, "registered", lease), [
+                self._event(entry, EventKind.REGISTERED, "came back after withdrawal", now)
+            ]
+        return Result(True, "renewed", lease), [self._event(entry, EventKind.RENEWED, "renewed while suspect", now)]
+
+    def deregister(self, name: str, *, now: float) -> tuple[Result, list[Event]]:
+        entry = self.directory.remove(name)
+        if entry is None:
+            return Result(False, f"no component named {name!r}"), []
+        self.changed = True
+        closed = incarnation(entry.record)
+        if closed:
+            self._closed[closed] = None
+            while len(self._closed) > CLOSED_INCARNATIONS:
+                self._closed.popitem(last=False)
+        return Result(True, "deregistered"), [self._event(entry, EventKind.DEREGISTERED, "deregistered", now)]
+
+    def lookup(self, query: Query) -> list[Entry]:
+        """Providers for a query, best first (see Directory.search)."""
+        return [entry for entry, _ in self.directory.search(query)]
+
+    # ---- fault management ---------------------------------------------------
+
+    def tick(self, now: float) -> list[Event]:
+        """Advance every component's state to time ``now``."""
+        events: list[Event] = []
+        for entry in self.directory.entries():
+            state = entry.state
+            if state is State.HEALTHY:
+                silent = now - entry.last_renewal
+                if silent > entry.lease:
+                    self._set(entry, State.SUSPECT, now)
+                    entry.next_attempt_at = now
+                    events.append(
+                        self._event(entry, EventKind.SUSPECT, f"missed its lease ({silent:.2f} s silent)", now)
+                    )
+                    state = State.SUSPECT
+            if state is State.SUSPECT:
+                if entry.record.launch_command:
+                    if now >= entry.next_attempt_at:
+                        events += self._relaunch(entry, now)
+                elif now - entry.last_renewal > entry.lease * (1 + self.config.max_failures):
+                    events.append(self._withdraw(entry, "silent and has no launch command", now))
+            elif state is State.RELAUNCHING and now - entry.launch_started_at > self.config.startup_grace:
+                events += self._failed(entry, f"did not re-register within {self.config.startup_grace:.1f} s", now)
+        return events
+
+    def launch_exited(self, name: str, returncode: int, *, now: float) -> list[Event]:
+        """The launcher saw a process we started exit."""
+        entry = self.directory.get(name)
+        if entry is None or entry.state is not State.RELAUNCHING:
+            return []
+        return self._failed(entry, f"relaunched process exited with code {returncode}", now)
+
+    def _relaunch(self, entry: Entry, now: float) -> list[Event]:
+        if self._launch is None:
+            return self._failed(entry, "this ComMAg has no launcher", now)
+        entry.launches += 1
+        try:
+            self._launch(entry.record)
+        except LaunchError as exc:
+            return self._failed(entry, str(exc), now)
+        self._set(entry, State.RELAUNCHING, now)
+        entry.launch_started_at = now
+        attempt = entry.failures + 1
+        return [self._event(entry, EventKind.RELAUNCHING, f"launch attempt {attempt}", now)]
+
+    def _failed(self, entry: Entry, reason: str, now: float) -> list[Event]:
+        entry.failures += 1
+        self.changed = True
+        cfg = self.config
+        if entry.failures >= cfg.max_failures:
+            self._set(entry, State.SUSPECT, now)
+            failed = self._event(entry, EventKind.LAUNCH_FAILED, reason, now)
+            return [failed, self._withdraw(entry, f"{entry.failures} consecutive failed launches", now)]
+        delay = min(cfg.backoff_max, cfg.backoff_initial * 2 ** (entry.failures - 1))
+        entry.next_attempt_at = now + delay
+        self._set(entry, State.SUSPECT, now)
+        return [self._event(entry, EventKind.LAUNCH_FAILED, f"{reason}; next attempt in {delay:.2f} s", now)]
+
+    def _withdraw(self, entry: Entry, reason: str, now: float) -> Event:
+        self._set(entry, State.WITHDRAWN, now)
+        return self._event(entry, EventKind.WITHDRAWN, reason, now)
+
+    def _set(self, entry: Entry, state: State, now: float) -> None:
+        if entry.state is not state:
+            entry.state = state
+            self.changed = True
+
+    def _event(self, entry: Entry, kind: EventKind, reason: str, now: float, *, log: bool = True) -> Event:
+        if log:
+            entry.history.append((now, kind.name.lower()))
+            del entry.history[:-HISTORY_LIMIT]
+        return Event(kind, entry.record, entry.state, entry.failures, reason, now)
+
+    # ---- persistence --------------------------------------------------------
+
+    def dump(self) -> list[dict]:
+        """The state worth keeping across a restart (times are not: they restart)."""
+        return [
+            {"record": e.record.to_dict(), "state": e.state.value, "failures": e.failures, "lease": e.lease}
+            for e in self.directory.entries()
+        ]
+
+    def restore(self, data: list[dict], *, now: float) -> int:
+        """Load dumped state. Every restored component gets a fresh lease from ``now``.
+
+        A component that was relaunching is suspect again (its launch was lost
+        with the old process); healthy ones keep renewing and stay healthy.
+        """
+        count = 0
+        for item in data:
+            record = Record.from_dict(item["record"])
+            state = State(item.get("state", "healthy"))
+            if state is State.RELAUNCHING:
+                state = State.SUSPECT
+            entry = Entry(
+                record=record,
+                state=state,
+                lease=float(item.get("lease", self.config.default_lease)),
+                last_renewal=now,
+                failures=int(item.get("failures", 0)),
+                next_attempt_at=now + self.config.startup_grace,
+                healthy_since=now,
+            )
+            self.directory.put(entry)
+            count += 1
+        return count

@@ -1,0 +1,211 @@
+"""The registry core with a fake clock and a fake launcher: no ROS, no processes."""
+
+from __future__ import annotations
+
+import pytest
+
+from cf_commag.records import EventKind, Query, Record, State
+from cf_commag.registry import LaunchError, Registry, RegistryConfig
+from cf_lang.taxonomy import Direction
+
+CFG = RegistryConfig(default_lease=1.0, startup_grace=2.0, max_failures=3, backoff_initial=0.5, backoff_max=1.5,
+                     stable_period=10.0)
+
+
+class FakeLauncher:
+    """Records launches; fails them when told to."""
+
+    def __init__(self):
+        self.launched: list[str] = []
+        self.fail = False
+
+    def __call__(self, record: Record) -> None:
+        self.launched.append(record.name)
+        if self.fail:
+            raise LaunchError("exec failed (fake)")
+
+
+def rec(name="blue_1_kick", cls="Kick", **kw) -> Record:
+    kw.setdefault("launch_command", ("/ws/install/cf_commag/lib/cf_commag/demo_component",))
+    return Record(name=name, service_class=cls, **kw)
+
+
+@pytest.fixture
+def launcher():
+    return FakeLauncher()
+
+
+@pytest.fixture
+def reg(launcher):
+    return Registry(CFG, launch=launcher)
+
+
+def kinds(events):
+    return [e.kind for e in events]
+
+
+def test_register_then_repeat_is_renewal(reg):
+    result, events = reg.register(rec(), now=0.0)
+    assert result.accepted and result.reason == "registered" and result.lease == 1.0
+    assert kinds(events) == [EventKind.REGISTERED]
+    result, events = reg.register(rec(), now=0.5)
+    assert result.reason == "renewed" and kinds(events) == [EventKind.RENEWED]
+    assert len(reg.directory) == 1
+
+
+@pytest.mark.parametrize(
+    ("record", "words"),
+    [
+        (rec(name="bad name"), "must match"),
+        (rec(name="9lives"), "must match"),
+        (rec(cls="Juggle"), "unknown service class"),
+        (rec(lease_period=1000.0), "outside"),
+        (rec(player_number=12), "0..11"),
+    ],
+)
+def test_bad_records_are_refused_with_a_reason(reg, record, words):
+    result, events = reg.register(record, now=0.0)
+    assert not result.accepted and words in result.reason and events == []
+
+
+def test_launch_command_outside_allowlist_is_refused():
+    reg = Registry(CFG, check_launch=lambda argv: None if argv[0].startswith("/ws/") else f"{argv[0]} not allowed")
+    assert reg.register(rec(), now=0)[0].accepted
+    result, _ = reg.register(rec(name="evil", launch_command=("/bin/sh", "-c", "rm -rf /")), now=0)
+    assert not result.accepted and "launch command refused: /bin/sh not allowed" == result.reason
+
+
+def test_missed_lease_suspect_relaunch_healthy(reg, launcher):
+    reg.register(rec(), now=0.0)
+    assert reg.tick(0.9) == []
+    events = reg.tick(1.1)
+    assert kinds(events) == [EventKind.SUSPECT, EventKind.RELAUNCHING]
+    assert launcher.launched == ["blue_1_kick"]
+    assert reg.directory.get("blue_1_kick").state is State.RELAUNCHING
+    result, events = reg.register(rec(), now=1.6)
+    assert kinds(events) == [EventKind.RELAUNCHED] and "0.50 s" in events[0].reason
+    assert reg.directory.get("blue_1_kick").state is State.HEALTHY
+
+
+def test_failed_launches_back_off_then_withdraw_and_lookup_reroutes(reg, launcher):
+    reg.register(rec("blue_1_kick"), now=0.0)
+    reg.register(rec("blue_1_kick_twin"), now=0.0)
+    launcher.fail = True
+    seen = []
+    t = 0.0
+    while t < 20.0:
+        reg.register(rec("blue_1_kick_twin"), now=t)  # the twin keeps renewing
+        seen += [(round(t, 2), e.kind) for e in reg.tick(t) if e.record.name == "blue_1_kick"]
+        t = round(t + 0.05, 2)
+    attempts = [t for t, k in seen if k is EventKind.LAUNCH_FAILED]
+    assert len(attempts) == 3
+    # Back-off doubles: 0.5 s after the first failure, 1.0 s after the second.
+    assert attempts[1] - attempts[0] == pytest.approx(0.5, abs=0.06)
+    assert attempts[2] - attempts[1] == pytest.approx(1.0, abs=0.06)
+    assert seen[-1][1] is EventKind.WITHDRAWN
+    entry = reg.directory.get("blue_1_kick")
+    assert entry.state is State.WITHDRAWN and entry.failures == 3
+    assert [e.name for e in reg.lookup(Query("Kick"))] == ["blue_1_kick_twin"]
+    assert [e.name for e in reg.lookup(Query("Kick", include_suspect=True))] == ["blue_1_kick_twin"]
+
+
+def test_launch_that_never_registers_fails_after_grace(reg, launcher):
+    reg.register(rec(), now=0.0)
+    reg.tick(1.1)
+    assert reg.tick(3.0) == []
+    events = reg.tick(3.2)
+    assert kinds(events) == [EventKind.LAUNCH_FAILED] and "within 2.0 s" in events[0].reason
+
+
+def test_process_exit_fails_the_launch(reg):
+    reg.register(rec(), now=0.0)
+    reg.tick(1.1)
+    events = reg.launch_exited("blue_1_kick", 3, now=1.3)
+    assert kinds(events) == [EventKind.LAUNCH_FAILED] and "code 3" in events[0].reason
+    assert reg.launch_exited("nobody", 1, now=1.3) == []
+
+
+def test_failure_count_resets_after_stable_period(reg, launcher):
+    reg.register(rec(), now=0.0)
+    reg.tick(1.1)
+    reg.launch_exited("blue_1_kick", 1, now=1.2)
+    reg.tick(1.8)  # second attempt after 0.5 s back-off
+    reg.register(rec(), now=2.0)
+    entry = reg.directory.get("blue_1_kick")
+    assert entry.state is State.HEALTHY and entry.failures == 1
+    for t in range(3, 13):
+        reg.register(rec(), now=float(t))
+    assert entry.failures == 0
+
+
+def test_component_without_launch_command_is_withdrawn_when_silent(reg):
+    reg.register(rec(launch_command=()), now=0.0)
+    assert kinds(reg.tick(1.1)) == [EventKind.SUSPECT]
+    assert reg.tick(3.9) == []
+    assert kinds(reg.tick(4.1)) == [EventKind.WITHDRAWN]
+
+
+def test_withdrawn_component_can_come_back(reg, launcher):
+    launcher.fail = True
+    reg.register(rec(), now=0.0)
+    t = 0.0
+    while reg.directory.get("blue_1_kick").state is not State.WITHDRAWN:
+        t += 0.1
+        reg.tick(t)
+    result, events = reg.register(rec(), now=t + 1)
+    assert kinds(events) == [EventKind.REGISTERED] and reg.directory.get("blue_1_kick").failures == 0
+
+
+def test_deregistered_incarnation_cannot_renew_but_a_new_one_can(reg):
+    old = rec(metadata=(("incarnation", "pid1-a"),))
+    reg.register(old, now=0.0)
+    assert kinds(reg.deregister("blue_1_kick", now=0.1)[1]) == [EventKind.DEREGISTERED]
+    result, _ = reg.register(old, now=0.2)
+    assert not result.accepted and "deregistered" in result.reason
+    assert reg.register(rec(metadata=(("incarnation", "pid2-b"),)), now=0.3)[0].accepted
+    assert not reg.deregister("nobody", now=0.4)[0].accepted
+
+
+def test_lookup_ranking_and_directions(reg):
+    reg.register(rec("a_action", "Action"), now=0)
+    reg.register(rec("b_ball", "BallAction"), now=0)
+    reg.register(rec("c_kick", "Kick"), now=0)
+    reg.register(rec("d_shoot", "Shoot"), now=0)
+    reg.register(rec("e_pass", "Pass"), now=0)
+    reg.register(rec("f_percept", "Perception"), now=0)
+    names = lambda q: [e.name for e in reg.lookup(q)]  # noqa: E731
+    assert names(Query("Kick")) == ["c_kick", "b_ball", "a_action"]
+    assert names(Query("Kick", Direction.SPECIFIC)) == ["c_kick", "d_shoot", "e_pass"]
+    assert names(Query("Kick", Direction.BOTH)) == ["c_kick", "d_shoot", "e_pass", "b_ball", "a_action"]
+    assert names(Query("Kick", Direction.EXACT)) == ["c_kick"]
+    assert names(Query("Kick", Direction.BOTH, max_results=2)) == ["c_kick", "d_shoot"]
+    assert names(Query("Perception", Direction.SPECIFIC)) == ["f_percept"]
+
+
+def test_lookup_filters_and_health_order(reg):
+    reg.register(rec("blue_7_action", "Action", team="blue", player_number=7), now=0)
+    reg.register(rec("blue_7_action_b", "Action", team="blue", player_number=7), now=0.5)
+    reg.register(rec("blue_8_action", "Action", team="blue", player_number=8), now=0.5)
+    reg.register(rec("red_7_action", "Action", team="red", player_number=7), now=0.5)
+    reg.tick(1.2)  # blue_7_action missed its lease: suspect, relaunching
+    q = Query("Action", team="blue", player_number=7)
+    assert [e.name for e in reg.lookup(q)] == ["blue_7_action_b"]
+    q = Query("Action", team="blue", player_number=7, include_suspect=True)
+    assert [e.name for e in reg.lookup(q)] == ["blue_7_action_b", "blue_7_action"]
+
+
+def test_dump_and_restore_keep_every_registration(reg, launcher):
+    reg.register(rec("a_action", "Action", team="blue"), now=0)
+    reg.register(rec("b_kick"), now=0)
+    launcher.fail = True
+    reg.tick(1.1)  # both suspect, launches failing
+    data = reg.dump()
+    fresh = Registry(CFG, launch=launcher)
+    assert fresh.restore(data, now=100.0) == 2
+    a = fresh.directory.get("a_action")
+    assert a.record == reg.directory.get("a_action").record and a.failures == 1
+    # Restored components get a full lease from the restore time: no relaunch storm.
+    launcher.launched.clear()
+    fresh.register(rec("a_action", "Action", team="blue"), now=100.5)
+    fresh.register(rec("b_kick"), now=100.5)
+    assert fresh.tick(101.0) == [] and launcher.launched == []

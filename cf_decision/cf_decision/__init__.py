@@ -1,0 +1,1 @@
+"""cf_decision: the league-independent decision component."""

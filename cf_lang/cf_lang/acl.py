@@ -1,0 +1,327 @@
+"""FIPA-ACL messages (FIPA SC00061) and their string form (FIPA SC00070).
+
+    (request
+      :sender (agent-identifier :name blue_3_decision)
+      :receiver (set (agent-identifier :name blue_3_action))
+      :content "(exec Player kick :playerNumber 3 :whichTeam our :power 80 :direction 0.1)"
+      :language cf-lang :ontology robocup-soccer :protocol fipa-request
+      :conversation-id c42 :reply-with r1 :reply-by 20261122T101010123Z)
+
+Performatives and parameter names are read case-insensitively. ``reply-by``
+is a FIPA date-time (``YYYYMMDDTHHMMSSmmm``, a trailing ``Z`` for UTC; times
+without it are read as UTC too) and is held as seconds since the epoch. The
+content is a string holding Framework Language; a Prolog agent may also write
+it as a bare S-expression, which is read and kept as text.
+"""
+
+from __future__ import annotations
+
+import calendar
+import re
+import time
+from dataclasses import dataclass, field, replace
+from enum import StrEnum
+
+from .errors import AclError, SexpError
+from .ontology import LANGUAGE, ONTOLOGY
+from .sexp import DEFAULT_LIMITS, Keyword, Limits, Symbol, dumps, loads
+
+
+class Performative(StrEnum):
+    """The 22 FIPA communicative acts."""
+
+    ACCEPT_PROPOSAL = "accept-proposal"
+    AGREE = "agree"
+    CANCEL = "cancel"
+    CFP = "cfp"
+    CONFIRM = "confirm"
+    DISCONFIRM = "disconfirm"
+    FAILURE = "failure"
+    INFORM = "inform"
+    INFORM_IF = "inform-if"
+    INFORM_REF = "inform-ref"
+    NOT_UNDERSTOOD = "not-understood"
+    PROPAGATE = "propagate"
+    PROPOSE = "propose"
+    PROXY = "proxy"
+    QUERY_IF = "query-if"
+    QUERY_REF = "query-ref"
+    REFUSE = "refuse"
+    REJECT_PROPOSAL = "reject-proposal"
+    REQUEST = "request"
+    REQUEST_WHEN = "request-when"
+    REQUEST_WHENEVER = "request-whenever"
+    SUBSCRIBE = "subscribe"
+
+
+_PERFORMATIVES = {p.value: p for p in Performative}
+
+
+@dataclass(frozen=True, slots=True)
+class AgentId:
+    """An agent identifier: a unique name and the transport addresses it listens on."""
+
+    name: str
+    addresses: tuple[str, ...] = ()
+
+    def to_sexp(self) -> list:
+        out: list = [_AID, _K_NAME, _word(self.name)]
+        if self.addresses:
+            out += [_K_ADDRESSES, [_SEQUENCE, *(_word(a) for a in self.addresses)]]
+        return out
+
+
+@dataclass(frozen=True, slots=True)
+class AclMessage:
+    """One FIPA-ACL message. ``reply_by`` is epoch seconds (UTC)."""
+
+    performative: Performative
+    sender: AgentId | None = None
+    receivers: tuple[AgentId, ...] = ()
+    content: str | None = None
+    reply_to: tuple[AgentId, ...] = ()
+    language: str | None = LANGUAGE
+    encoding: str | None = None
+    ontology: str | None = ONTOLOGY
+    protocol: str | None = None
+    conversation_id: str | None = None
+    reply_with: str | None = None
+    in_reply_to: str | None = None
+    reply_by: float | None = None
+    user: tuple[tuple[str, str], ...] = field(default=())
+    """User-defined parameters as (name, value) pairs; names start with ``X-``."""
+
+    def __str__(self) -> str:
+        return to_text(self)
+
+    def reply(
+        self, performative: Performative | str, content: str | None = None, *, sender: AgentId | None = None
+    ) -> AclMessage:
+        """A reply in the same conversation, addressed to reply-to or the sender."""
+        to = self.reply_to or ((self.sender,) if self.sender else ())
+        return AclMessage(
+            performative=Performative(performative),
+            sender=sender if sender is not None else (self.receivers[0] if self.receivers else None),
+            receivers=to,
+            content=content,
+            language=self.language,
+            ontology=self.ontology,
+            protocol=self.protocol,
+            conversation_id=self.conversation_id,
+            in_reply_to=self.reply_with,
+        )
+
+    def with_(self, **changes) -> AclMessage:
+        """A copy with some parameters changed."""
+        return replace(self, **changes)
+
+
+_AID = Symbol("agent-identifier")
+_SET = Symbol("set")
+_SEQUENCE = Symbol("sequence")
+_K_NAME = Keyword("name")
+_K_ADDRESSES = Keyword("addresses")
+_K_RESOLVERS = Keyword("resolvers")
+_WORD_RE = re.compile(r"""[^\s()"#0-9:;-][^\s()";]*""")
+
+
+def _word(text: str):
+    """A FIPA word if the text is one, else a string (so it reads back the same)."""
+    if _WORD_RE.fullmatch(text):
+        return str.__new__(Symbol, text)
+    return text
+
+
+# ---- date-times ---------------------------------------------------------------
+
+_DATETIME_RE = re.compile(r"([+-])?(\d{4})(\d{2})(\d{2})T(\d{2})(\d{2})(\d{2})(\d{3})([a-zA-Z])?")
+
+
+def format_datetime(epoch: float) -> str:
+    """Epoch seconds as a FIPA UTC date-time, e.g. ``20261122T101010123Z``."""
+    millis = round(epoch * 1000)
+    tm = time.gmtime(millis // 1000)
+    return time.strftime("%Y%m%dT%H%M%S", tm) + f"{millis % 1000:03d}Z"
+
+
+def parse_datetime(text: str) -> float:
+    """A FIPA date-time as epoch seconds; raises AclError if it is not one."""
+    m = _DATETIME_RE.fullmatch(text)
+    if not m or m.group(1):
+        raise AclError(f"reply-by: expected a date-time like 20261122T101010123Z, found {text!r}")
+    year, mon, day, hh, mm, ss, ms = (int(g) for g in m.groups()[1:8])
+    try:
+        tm = time.struct_time((year, mon, day, hh, mm, ss, 0, 0, 0))
+        if not (1 <= mon <= 12 and 1 <= day <= 31 and hh < 24 and mm < 60 and ss < 61):
+            raise ValueError
+        return (calendar.timegm(tm) * 1000 + ms) / 1000.0
+    except (ValueError, OverflowError):
+        raise AclError(f"reply-by: not a valid date-time: {text!r}") from None
+
+
+# ---- writing ------------------------------------------------------------------
+
+
+def to_sexp(msg: AclMessage) -> list:
+    out: list = [str.__new__(Symbol, msg.performative.value)]
+    if msg.sender is not None:
+        out += [Keyword("sender"), msg.sender.to_sexp()]
+    if msg.receivers:
+        out += [Keyword("receiver"), [_SET, *(r.to_sexp() for r in msg.receivers)]]
+    if msg.reply_to:
+        out += [Keyword("reply-to"), [_SET, *(r.to_sexp() for r in msg.reply_to)]]
+    if msg.content is not None:
+        out += [Keyword("content"), msg.content]
+    for name, value in (
+        ("language", msg.language),
+        ("encoding", msg.encoding),
+        ("ontology", msg.ontology),
+        ("protocol", msg.protocol),
+        ("conversation-id", msg.conversation_id),
+        ("reply-with", msg.reply_with),
+        ("in-reply-to", msg.in_reply_to),
+    ):
+        if value is not None:
+            out += [Keyword(name), _word(value)]
+    if msg.reply_by is not None:
+        out += [Keyword("reply-by"), str.__new__(Symbol, format_datetime(msg.reply_by))]
+    for name, value in msg.user:
+        out += [Keyword(name), value]
+    return out
+
+
+def to_text(msg: AclMessage) -> str:
+    """The message in FIPA's string form, on one line."""
+    return dumps(to_sexp(msg))
+
+
+# ---- reading ------------------------------------------------------------------
+
+_STRING_PARAMS = {
+    "language": "language",
+    "encoding": "encoding",
+    "ontology": "ontology",
+    "protocol": "protocol",
+    "conversation-id": "conversation_id",
+    "reply-with": "reply_with",
+    "in-reply-to": "in_reply_to",
+}
+
+
+def _text_of(value, param: str) -> str:
+    if type(value) is list:
+        raise AclError(f":{param}: expected a word or string, found a list")
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def _agent(value, param: str) -> AgentId:
+    if type(value) is Symbol or type(value) is str:
+        return AgentId(str(value))  # a bare name, accepted for convenience
+    if type(value) is not list or not value or str(value[0]).lower() != "agent-identifier":
+        raise AclError(f":{param}: expected (agent-identifier :name ...), found {dumps_safe(value)}")
+    name = None
+    addresses: tuple[str, ...] = ()
+    items = value[1:]
+    if len(items) % 2:
+        raise AclError(f":{param}: agent-identifier needs :parameter value pairs")
+    for i in range(0, len(items), 2):
+        label, item = items[i], items[i + 1]
+        key = label.name.lower() if type(label) is Keyword else None
+        if key == "name":
+            name = _text_of(item, f"{param} name")
+        elif key == "addresses":
+            if type(item) is not list or not item or str(item[0]).lower() != "sequence":
+                raise AclError(f":{param}: :addresses must be (sequence url ...)")
+            addresses = tuple(_text_of(a, f"{param} address") for a in item[1:])
+        elif key == "resolvers" or (key and key.startswith("x-")):
+            continue
+        else:
+            raise AclError(f":{param}: unknown agent-identifier parameter {dumps_safe(label)}")
+    if not name:
+        raise AclError(f":{param}: agent-identifier without :name")
+    return AgentId(name, addresses)
+
+
+def _agents(value, param: str) -> tuple[AgentId, ...]:
+    if type(value) is list and value and type(value[0]) is Symbol and str(value[0]).lower() in ("set", "sequence"):
+        return tuple(_agent(v, param) for v in value[1:])
+    return (_agent(value, param),)
+
+
+def dumps_safe(value) -> str:
+    try:
+        text = dumps(value)
+    except Exception:
+        text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def from_sexp(sexp) -> AclMessage:
+    """Build a message from an already-read S-expression."""
+    if type(sexp) is not list or not sexp or type(sexp[0]) is not Symbol:
+        raise AclError(f"expected (performative :parameter value ...), found {dumps_safe(sexp)}")
+    perf = _PERFORMATIVES.get(str(sexp[0]).lower())
+    if perf is None:
+        raise AclError(f"unknown performative {sexp[0]!s}; expected one of the 22 FIPA acts")
+    items = sexp[1:]
+    if len(items) % 2:
+        raise AclError("expected :parameter value pairs after the performative")
+    fields: dict = {"performative": perf, "language": None, "ontology": None}
+    user: list[tuple[str, str]] = []
+    seen: set[str] = set()
+    for i in range(0, len(items), 2):
+        label, value = items[i], items[i + 1]
+        if type(label) is not Keyword:
+            raise AclError(f"expected a :parameter, found {dumps_safe(label)}")
+        name = label.name.lower()
+        if name in seen:
+            raise AclError(f":{name} given twice")
+        seen.add(name)
+        if name == "sender":
+            fields["sender"] = _agent(value, name)
+        elif name == "receiver":
+            fields["receivers"] = _agents(value, name)
+        elif name == "reply-to":
+            fields["reply_to"] = _agents(value, name)
+        elif name == "content":
+            fields["content"] = value if type(value) is str else dumps(value)
+        elif name in _STRING_PARAMS:
+            fields[_STRING_PARAMS[name]] = _text_of(value, name)
+        elif name == "reply-by":
+            fields["reply_by"] = parse_datetime(_text_of(value, name))
+        elif name.startswith("x-"):
+            user.append((label.name, _text_of(value, name)))
+        else:
+            raise AclError(f"unknown message parameter :{label.name}")
+    fields["user"] = tuple(user)
+    return AclMessage(**fields)
+
+
+def parse(text: str | bytes, *, limits: Limits = DEFAULT_LIMITS) -> AclMessage:
+    """Read a message in FIPA's string form; raise SexpError or AclError."""
+    return from_sexp(loads(text, limits=limits))
+
+
+def check_content(msg: AclMessage) -> None:
+    """Raise AclError unless the message's language and ontology are ours (or unset)."""
+    if msg.language not in (None, LANGUAGE):
+        raise AclError(f"content language {msg.language!r} is not understood; use {LANGUAGE}")
+    if msg.ontology not in (None, ONTOLOGY):
+        raise AclError(f"ontology {msg.ontology!r} is not understood; use {ONTOLOGY}")
+
+
+__all__ = [
+    "AclMessage",
+    "AgentId",
+    "Performative",
+    "SexpError",
+    "check_content",
+    "format_datetime",
+    "from_sexp",
+    "parse",
+    "parse_datetime",
+    "to_sexp",
+    "to_text",
+]
