@@ -31,6 +31,7 @@ from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.protocols import Conversation, ConversationTable
 from cf_lang.taxonomy import Direction
 from rclpy._rclpy_pybind11 import RCLError
+from rclpy.duration import Duration
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
@@ -212,9 +213,11 @@ class Agent:
     def _renew(self) -> None:
         now = time.monotonic()
         if self._pending_register is not None and not self._pending_register.done():
-            if now - self._pending_since < 2 * self.record.lease_period:
+            if now - self._pending_since < max(self.record.lease_period, 0.5):
                 return
-            self._pending_register.cancel()  # the ComMAg was away; ask again
+            # Unanswered: the ComMAg restarted or the request was lost. Ask again.
+            self._register_client.remove_pending_request(self._pending_register)
+            self._pending_register.cancel()
         if not self._register_client.service_is_ready():
             return
         self._pending_since = now
@@ -242,6 +245,8 @@ class Agent:
             return None
         self._closed = True
         done = Future()
+        with contextlib.suppress(RCLError):
+            self.flush(timeout=2.0)
         try:
             for timer in self._timers:
                 self.node.destroy_timer(timer)
@@ -317,6 +322,19 @@ class Agent:
                 self._publishers[receiver.name] = pub
             pub.publish(String(data=text))
             self.counters["sent"] += 1
+
+    def flush(self, timeout: float = 5.0) -> bool:
+        """Wait until every receiver acknowledged every message sent so far.
+
+        Call it before exiting: messages still queued in a publisher die with
+        the process. Returns False if the timeout passed first.
+        """
+        deadline = time.monotonic() + timeout
+        for pub in self._publishers.values():
+            left = max(0.0, deadline - time.monotonic())
+            if not pub.wait_for_all_acked(Duration(nanoseconds=int(left * 1e9))):
+                return False
+        return True
 
     def request(
         self,

@@ -25,7 +25,13 @@ from .launcher import Launcher, LaunchPolicy, workspace_roots
 from .records import EventKind, State
 from .registry import Event, Registry, RegistryConfig
 
-EVENTS_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
+# Transient local: a monitor that joins late still gets the last 1000 events.
+EVENTS_QOS = QoSProfile(
+    depth=1000,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.TRANSIENT_LOCAL,
+    history=HistoryPolicy.KEEP_LAST,
+)
 SNAPSHOT_QOS = QoSProfile(
     depth=1,
     reliability=ReliabilityPolicy.RELIABLE,
@@ -71,7 +77,7 @@ class CommagNode(LifecycleNode):
     ``autostart`` (bool, default true: configure and activate at start-up).
 
     Services: ``~/register`` (Register), ``~/deregister`` (Deregister),
-    ``~/lookup`` (Lookup). Topics: ``~/events`` (RegistryEvent),
+    ``~/lookup`` (Lookup). Topics: ``~/events`` (RegistryEvent, transient local, last 1000),
     ``~/registry`` (Registry, transient local: late joiners get the latest),
     ``/diagnostics`` (DiagnosticArray, one status per component).
     Services answer "not active" unless the node is active.

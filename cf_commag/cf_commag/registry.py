@@ -240,7 +240,8 @@ class Registry:
         ]
 
     def restore(self, data: list[dict], *, now: float) -> int:
-        """Load dumped state. Every restored component gets a fresh lease from ``now``.
+        """Load dumped state. Every restored component gets a fresh lease from ``now``
+        plus the start-up grace: its client needs a moment to find the new ComMAg.
 
         A component that was relaunching is suspect again (its launch was lost
         with the old process); healthy ones keep renewing and stay healthy.
@@ -255,7 +256,7 @@ class Registry:
                 record=record,
                 state=state,
                 lease=float(item.get("lease", self.config.default_lease)),
-                last_renewal=now,
+                last_renewal=now + self.config.startup_grace,
                 failures=int(item.get("failures", 0)),
                 next_attempt_at=now + self.config.startup_grace,
                 healthy_since=now,

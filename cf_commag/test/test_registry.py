@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import pytest
-
 from cf_commag.records import EventKind, Query, Record, State
 from cf_commag.registry import LaunchError, Registry, RegistryConfig
 from cf_lang.taxonomy import Direction
 
-CFG = RegistryConfig(default_lease=1.0, startup_grace=2.0, max_failures=3, backoff_initial=0.5, backoff_max=1.5,
-                     stable_period=10.0)
+CFG = RegistryConfig(
+    default_lease=1.0, startup_grace=2.0, max_failures=3, backoff_initial=0.5, backoff_max=1.5, stable_period=10.0
+)
 
 
 class FakeLauncher:
@@ -72,7 +72,7 @@ def test_launch_command_outside_allowlist_is_refused():
     reg = Registry(CFG, check_launch=lambda argv: None if argv[0].startswith("/ws/") else f"{argv[0]} not allowed")
     assert reg.register(rec(), now=0)[0].accepted
     result, _ = reg.register(rec(name="evil", launch_command=("/bin/sh", "-c", "rm -rf /")), now=0)
-    assert not result.accepted and "launch command refused: /bin/sh not allowed" == result.reason
+    assert not result.accepted and result.reason == "launch command refused: /bin/sh not allowed"
 
 
 def test_missed_lease_suspect_relaunch_healthy(reg, launcher):

@@ -1,0 +1,99 @@
+"""The ComMAg with real processes over real DDS: relaunch, withdrawal, restart, allowlist, taxonomy."""
+
+from __future__ import annotations
+
+import os
+import signal
+
+from cf_system import start_commag, start_component
+
+from cf_interfaces.msg import ComponentRecord
+from cf_interfaces.srv import Lookup, Register
+
+
+def pid_of(probe, name):
+    """Pids of the processes running component ``name`` (found by command line)."""
+    import subprocess
+
+    out = subprocess.run(["pgrep", "-f", "--", f"--name {name} "], capture_output=True, text=True).stdout.split()
+    return [int(p) for p in out]
+
+
+def test_killed_component_is_relaunched_and_healthy_again(procs, probe, tag, tmp_path):
+    start_commag(procs, tag, tmp_path)
+    name = f"kick_{tag}"
+    comp = start_component(procs, tag, name, "--service-class", "Kick", "--lease", "0.5", "--team", "blue")
+    probe.wait_kind(name, "registered")
+    os.kill(comp.pid, signal.SIGKILL)
+    suspect = probe.wait_kind(name, "suspect")
+    assert "missed its lease" in suspect.reason
+    probe.wait_kind(name, "relaunching")
+    relaunched = probe.wait_kind(name, "relaunched")
+    assert relaunched.record.state == "healthy"
+    assert probe.kinds(name)[:4] == ["registered", "suspect", "relaunching", "relaunched"]
+    assert probe.lookup("Kick", team="blue") == [name]
+    # The new process is a different one and it serves requests.
+    new_pids = pid_of(probe, name)
+    assert new_pids and comp.pid not in new_pids
+    assert "up (pid" in (tmp_path / "component-logs" / f"{name}.log").read_text()
+
+
+def test_repeatedly_failing_component_is_withdrawn_and_lookup_reroutes(procs, probe, tag, tmp_path):
+    start_commag(procs, tag, tmp_path, "max_failures:=3", "backoff_initial:=0.3", "backoff_max:=2.0")
+    failing, twin = f"a_kick_{tag}", f"b_kick_{tag}"
+    comp = start_component(procs, tag, failing, "--service-class", "Kick", "--lease", "0.5", "--relaunch-fails")
+    start_component(procs, tag, twin, "--service-class", "Kick", "--lease", "0.5")
+    probe.wait_kind(failing, "registered")
+    probe.wait_kind(twin, "registered")
+    assert probe.lookup("Kick") == [failing, twin]  # by name among equals
+    os.kill(comp.pid, signal.SIGKILL)
+    withdrawn = probe.wait_kind(failing, "withdrawn", timeout=60)
+    assert withdrawn.record.state == "withdrawn" and withdrawn.record.failures == 3
+    failed = [e.reason for e in probe.events if e.record.name == failing and e.kind_name == "launch_failed"]
+    assert len(failed) == 3
+    assert "exited with code 3" in failed[0]
+    assert "next attempt in 0.30 s" in failed[0] and "next attempt in 0.60 s" in failed[1]
+    assert probe.lookup("Kick") == [twin]
+    assert probe.lookup("Kick", include_suspect=True) == [twin]
+
+
+def test_commag_killed_and_restarted_keeps_every_registration(procs, probe, tag, tmp_path):
+    commag = start_commag(procs, tag, tmp_path)
+    names = [f"a_dash_{tag}", f"b_turn_{tag}"]
+    start_component(procs, tag, names[0], "--service-class", "Dash", "--lease", "0.5")
+    start_component(procs, tag, names[1], "--service-class", "Turn", "--lease", "0.5")
+    for name in names:
+        probe.wait_kind(name, "registered")
+    pids_before = {n: pid_of(probe, n) for n in names}
+    os.kill(commag.pid, signal.SIGKILL)
+    commag.wait()
+    probe.events.clear()
+    start_commag(procs, tag, tmp_path, log_name="commag-restarted")
+    assert probe.lookup("Movement", direction=Lookup.Request.SPECIFIC) == names
+    probe.spin_for(3.0)  # six leases: every component renews, none is relaunched
+    assert not [e for e in probe.events if e.kind_name in ("suspect", "relaunching", "withdrawn")]
+    assert {n: pid_of(probe, n) for n in names} == pids_before
+    assert "2 component(s) restored" in procs.log("commag-restarted")
+
+
+def test_launch_command_outside_the_allowlist_is_refused(procs, probe, tag, tmp_path):
+    start_commag(procs, tag, tmp_path)
+    evil = ComponentRecord(name=f"evil_{tag}", service_class="Kick", launch_command=["/bin/sh", "-c", "touch /tmp/x"])
+    res = probe.call(probe.register, Register.Request(component=evil))
+    assert not res.accepted
+    assert "launch command refused" in res.reason and "allowlist" in res.reason
+    assert probe.lookup("Kick") == []
+
+
+def test_lookup_honours_the_taxonomy_both_ways(procs, probe, tag, tmp_path):
+    start_commag(procs, tag, tmp_path)
+    general, specific = f"a_action_{tag}", f"b_shoot_{tag}"
+    start_component(procs, tag, general, "--service-class", "Action")
+    start_component(procs, tag, specific, "--service-class", "Shoot")
+    probe.wait_kind(general, "registered")
+    probe.wait_kind(specific, "registered")
+    assert probe.lookup("Kick") == [general]  # a general provider serves a specific request
+    assert probe.lookup("Kick", direction=Lookup.Request.SPECIFIC) == [specific]
+    assert probe.lookup("Kick", direction=Lookup.Request.BOTH) == [specific, general]
+    assert probe.lookup("Shoot") == [specific, general]
+    assert probe.lookup("Kick", direction=Lookup.Request.EXACT) == []
