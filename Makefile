@@ -2,7 +2,7 @@
 # a venv with pinned ROS 2 Jazzy wheels (or a sourced full ROS 2 Jazzy install),
 # then colcon build. A second run skips what has not changed.
 SHELL := /bin/bash
-.SHELLFLAGS := -eu -o pipefail -c
+.SHELLFLAGS := -e -o pipefail -c
 .DEFAULT_GOAL := help
 
 VENV      ?= .venv

@@ -82,7 +82,7 @@ def test_missed_lease_suspect_relaunch_healthy(reg, launcher):
     assert kinds(events) == [EventKind.SUSPECT, EventKind.RELAUNCHING]
     assert launcher.launched == ["blue_1_kick"]
     assert reg.directory.get("blue_1_kick").state is State.RELAUNCHING
-    result, events = reg.register(rec(), now=1.6)
+    _result, events = reg.register(rec(), now=1.6)
     assert kinds(events) == [EventKind.RELAUNCHED] and "0.50 s" in events[0].reason
     assert reg.directory.get("blue_1_kick").state is State.HEALTHY
 
@@ -152,7 +152,7 @@ def test_withdrawn_component_can_come_back(reg, launcher):
     while reg.directory.get("blue_1_kick").state is not State.WITHDRAWN:
         t += 0.1
         reg.tick(t)
-    result, events = reg.register(rec(), now=t + 1)
+    _result, events = reg.register(rec(), now=t + 1)
     assert kinds(events) == [EventKind.REGISTERED] and reg.directory.get("blue_1_kick").failures == 0
 
 
