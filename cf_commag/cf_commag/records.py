@@ -6,10 +6,11 @@ so a lookup gives the same answer wherever it runs.
 
 from __future__ import annotations
 
-import heapq
+import bisect
 import re
 from dataclasses import asdict, dataclass, field
 from enum import IntEnum, StrEnum
+from functools import cache
 
 from cf_lang.taxonomy import SERVICES, Direction, TaxonomyError
 
@@ -112,12 +113,25 @@ class Query:
     max_results: int = 0
 
 
+@cache
+def _class_order(requested: str, direction: Direction) -> tuple[tuple[str, int], ...]:
+    """Classes that match a request, in ranking order: nearest first, more specific first at a tie."""
+    found = [(requested, 0)]
+    if direction in (Direction.GENERAL, Direction.BOTH):
+        found += [(cls, i + 1) for i, cls in enumerate(SERVICES.ancestors(requested))]
+    if direction in (Direction.SPECIFIC, Direction.BOTH):
+        base = SERVICES.depth(requested)
+        found += [(cls, base - SERVICES.depth(cls)) for cls in SERVICES.descendants(requested)]
+    return tuple(sorted(found, key=lambda item: (abs(item[1]), item[1])))
+
+
 class Directory:
-    """Entries indexed by service class, searched by taxonomy distance."""
+    """Entries indexed by service class (names kept sorted) and by team/player."""
 
     def __init__(self) -> None:
         self._entries: dict[str, Entry] = {}
-        self._by_class: dict[str, dict[str, Entry]] = {}
+        self._names: dict[str, list[str]] = {}  # class -> sorted names
+        self._by_owner: dict[tuple[str, int], set[str]] = {}  # (team, player) -> names
 
     def __len__(self) -> int:
         return len(self._entries)
@@ -133,16 +147,24 @@ class Directory:
 
     def put(self, entry: Entry) -> None:
         old = self._entries.get(entry.name)
-        if old is not None and old.record.service_class != entry.record.service_class:
-            self._by_class[old.record.service_class].pop(entry.name, None)
+        if old is not None:
+            self._unindex(old)
         self._entries[entry.name] = entry
-        self._by_class.setdefault(entry.record.service_class, {})[entry.name] = entry
+        bisect.insort(self._names.setdefault(entry.record.service_class, []), entry.name)
+        self._by_owner.setdefault((entry.record.team, entry.record.player_number), set()).add(entry.name)
 
     def remove(self, name: str) -> Entry | None:
         entry = self._entries.pop(name, None)
         if entry is not None:
-            self._by_class.get(entry.record.service_class, {}).pop(name, None)
+            self._unindex(entry)
         return entry
+
+    def _unindex(self, entry: Entry) -> None:
+        names = self._names.get(entry.record.service_class, [])
+        i = bisect.bisect_left(names, entry.name)
+        if i < len(names) and names[i] == entry.name:
+            del names[i]
+        self._by_owner.get((entry.record.team, entry.record.player_number), set()).discard(entry.name)
 
     def search(self, query: Query) -> list[tuple[Entry, int]]:
         """Matching entries with their taxonomy distance, best first.
@@ -151,31 +173,51 @@ class Directory:
         (exact first, and at equal distance the more specific provider); then
         name. Withdrawn entries never match.
         """
-        requested = SERVICES.check(query.service_class)
-        classes: list[tuple[str, int]] = [(requested, 0)]
-        if query.direction in (Direction.GENERAL, Direction.BOTH):
-            classes += [(cls, i + 1) for i, cls in enumerate(SERVICES.ancestors(requested))]
-        if query.direction in (Direction.SPECIFIC, Direction.BOTH):
-            classes += [
-                (cls, -(SERVICES.depth(cls) - SERVICES.depth(requested))) for cls in SERVICES.descendants(requested)
-            ]
-        ranked = []
-        for cls, distance in classes:
-            for entry in self._by_class.get(cls, {}).values():
+        order = _class_order(SERVICES.check(query.service_class), Direction(query.direction))
+        if query.team or query.player_number:
+            return self._search_owned(query, order)
+        limit = query.max_results
+        healthy: list[tuple[Entry, int]] = []
+        others: list[tuple[int, Entry, int]] = []
+        entries = self._entries
+        for cls, distance in order:
+            for name in self._names.get(cls, ()):
+                entry = entries[name]
                 rank = _STATE_RANK.get(entry.state)
-                if rank is None or (rank and not query.include_suspect):
-                    continue
-                rec = entry.record
-                if query.team and rec.team != query.team:
-                    continue
-                if query.player_number and rec.player_number != query.player_number:
-                    continue
-                ranked.append(((rank, abs(distance), distance, rec.name), entry, distance))
-        if query.max_results and query.max_results < len(ranked):
-            best = heapq.nsmallest(query.max_results, ranked, key=lambda item: item[0])
+                if rank == 0:
+                    healthy.append((entry, distance))
+                    if limit and len(healthy) >= limit:
+                        return healthy
+                elif rank is not None and query.include_suspect:
+                    others.append((rank, entry, distance))
+        others.sort(key=lambda item: item[0])  # stable: keeps the class/name order within a state
+        found = healthy + [(entry, distance) for _, entry, distance in others]
+        return found[:limit] if limit else found
+
+    def _search_owned(self, query: Query, order: tuple[tuple[str, int], ...]) -> list[tuple[Entry, int]]:
+        """A team/player filter selects few entries: rank those directly."""
+        if query.team and query.player_number:
+            names = self._by_owner.get((query.team, query.player_number), set())
         else:
-            best = sorted(ranked, key=lambda item: item[0])
-        return [(entry, distance) for _, entry, distance in best]
+            names = {
+                n
+                for (team, player), owned in self._by_owner.items()
+                if (not query.team or team == query.team) and (not query.player_number or player == query.player_number)
+                for n in owned
+            }
+        distance_of = dict(order)
+        ranked = []
+        for name in names:
+            entry = self._entries[name]
+            distance = distance_of.get(entry.record.service_class)
+            rank = _STATE_RANK.get(entry.state)
+            if distance is None or rank is None or (rank and not query.include_suspect):
+                continue
+            ranked.append(((rank, abs(distance), distance, name), entry, distance))
+        ranked.sort(key=lambda item: item[0])
+        if query.max_results:
+            ranked = ranked[: query.max_results]
+        return [(entry, distance) for _, entry, distance in ranked]
 
 
 _NAME_RE = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,99}")
