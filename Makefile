@@ -46,7 +46,7 @@ $(STAMP_BLD): $(ENV_STAMP) $(PKG_SRC) colcon.meta
 
 lint: $(ENV_STAMP)
 	@echo "==> ruff"
-	$(ACTIVATE) && ruff check . && ruff format --check .
+	$(ACTIVATE) && ruff check --no-cache . && ruff format --no-cache --check .
 
 test: build lint
 	$(WS) && python tools/run_tests.py

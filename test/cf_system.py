@@ -11,11 +11,11 @@ from pathlib import Path
 
 import rclpy
 from ament_index_python.packages import get_package_prefix
-from cf_commag.client import SNAPSHOT_QOS
-from cf_commag.commag_node import EVENTS_QOS
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 
+from cf_commag.client import SNAPSHOT_QOS
+from cf_commag.commag_node import EVENTS_QOS
 from cf_interfaces.msg import Registry, RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 

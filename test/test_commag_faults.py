@@ -5,10 +5,9 @@ from __future__ import annotations
 import os
 import signal
 
-from cf_system import start_commag, start_component
-
 from cf_interfaces.msg import ComponentRecord
 from cf_interfaces.srv import Lookup, Register
+from cf_system import start_commag, start_component
 
 
 def pid_of(probe, name):

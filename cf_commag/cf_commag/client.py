@@ -27,9 +27,6 @@ import uuid
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
-from cf_lang.acl import AclMessage, AgentId, Performative
-from cf_lang.protocols import Conversation, ConversationTable
-from cf_lang.taxonomy import Direction
 from rclpy._rclpy_pybind11 import RCLError
 from rclpy.duration import Duration
 from rclpy.executors import ExternalShutdownException
@@ -42,6 +39,9 @@ from cf_interfaces.msg import ComponentRecord, KeyValue
 from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.srv import Deregister, Lookup, Register
 from cf_lang import LanguageError, acl, dumps, protocols
+from cf_lang.acl import AclMessage, AgentId, Performative
+from cf_lang.protocols import Conversation, ConversationTable
+from cf_lang.taxonomy import Direction
 
 from .convert import entry_from_msg
 from .records import Directory, Entry, Query, valid_agent_name

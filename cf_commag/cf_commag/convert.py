@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-from cf_lang.taxonomy import Direction
-
 from cf_interfaces.msg import ComponentRecord, KeyValue, RegistryEvent
 from cf_interfaces.srv import Lookup
+from cf_lang.taxonomy import Direction
 
 from .records import Entry, Query, Record, Transport
 from .registry import Event

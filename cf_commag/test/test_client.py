@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-from cf_commag.client import Agent, Failure, Refuse, inbox_topic
-from cf_commag.commag_node import CommagNode
 from rclpy.parameter import Parameter
 from std_msgs.msg import String
+
+from cf_commag.client import Agent, Failure, Refuse, inbox_topic
+from cf_commag.commag_node import CommagNode
 
 
 def start_commag(ros, unique, tmp_path):

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import json
 
-from cf_commag.client import SNAPSHOT_QOS
-from cf_commag.commag_node import EVENTS_QOS, CommagNode
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.parameter import Parameter
 
+from cf_commag.client import SNAPSHOT_QOS
+from cf_commag.commag_node import EVENTS_QOS, CommagNode
 from cf_interfaces.msg import ComponentRecord, Registry, RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 

@@ -8,6 +8,7 @@ import time
 from pathlib import Path
 
 import pytest
+
 from cf_commag.launcher import Launcher, LaunchPolicy
 from cf_commag.registry import LaunchError
 from cf_commag.store import load, save

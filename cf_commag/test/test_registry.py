@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+
 from cf_commag.records import EventKind, Query, Record, State
 from cf_commag.registry import LaunchError, Registry, RegistryConfig
 from cf_lang.taxonomy import Direction

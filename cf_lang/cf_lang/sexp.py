@@ -32,7 +32,7 @@ from .errors import SexpError, SexpLimitError, SexpSyntaxError, SexpWriteError
 
 __all__ = ["DEFAULT_LIMITS", "Keyword", "Limits", "Symbol", "dumps", "loads"]
 
-_TOKEN = re.compile(r"""\s*([()]|"[^"\\]*(?:\\.[^"\\]*)*"|;[^\n]*|[^\s()";]+|.)""", re.DOTALL)
+_TOKEN = re.compile(r"""\s*([()]|"[^"\\]*(?:\\.[^"\\]*)*"|;[^\n]*|[^\s()";]+|\S)""")
 _findall = _TOKEN.findall
 _SYMBOL_RE = re.compile(r"""[^\s()";:][^\s()";]*""")
 _NUMBER_RE = re.compile(r"""[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?""")

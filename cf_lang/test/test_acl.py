@@ -3,6 +3,10 @@
 from __future__ import annotations
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from cf_lang import AclError, SexpError
 from cf_lang.acl import (
     AclMessage,
     AgentId,
@@ -13,10 +17,6 @@ from cf_lang.acl import (
     parse_datetime,
     to_text,
 )
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
-from cf_lang import AclError, SexpError
 
 GOLDEN = (
     "(request :sender (agent-identifier :name blue_3_decision :addresses (sequence tcp://10.0.0.3:7001))"

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import pytest
-from cf_lang.ontology import AbsolutePositioning, Ball, Player, PlayMode, Team, Velocity, WorldState
-from cf_lang.ontology.actions import Kick, TurnToObject
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cf_lang import Exec, ExpressionError, Val, parse_expr, unparse
+from cf_lang.ontology import AbsolutePositioning, Ball, Player, PlayMode, Team, Velocity, WorldState
+from cf_lang.ontology.actions import Kick, TurnToObject
 
 PAPER_INSTANCE = "(AbsolutePositioning :x 10.3 :y -23.67 :yaw 0.23456)"
 PAPER_VAL = "(val Player positioning :playerNumber 5 :whichTeam opp)"

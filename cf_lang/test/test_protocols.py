@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import pytest
-from cf_lang.acl import AgentId, Performative, parse, to_text
-from cf_lang.protocols import ConversationTable, initiate, not_understood, respond
 
 from cf_lang import ProtocolError
+from cf_lang.acl import AgentId, Performative, parse, to_text
+from cf_lang.protocols import ConversationTable, initiate, not_understood, respond
 
 ME, PEER = AgentId("decision"), AgentId("action")
 

@@ -8,11 +8,11 @@ import subprocess
 import sys
 
 import pytest
-from cf_lang.errors import SexpWriteError
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cf_lang import DEFAULT_LIMITS, Keyword, Limits, SexpError, SexpLimitError, SexpSyntaxError, Symbol, dumps, loads
+from cf_lang.errors import SexpWriteError
 
 
 def same(a, b) -> bool:
@@ -180,3 +180,16 @@ def test_cf_lang_imports_without_ros():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+@pytest.mark.parametrize("pad", ["", " ", "\n", " \t\n ", "; trailing comment\n"])
+def test_both_tokenizer_paths_accept_surrounding_space(pad):
+    # Text with a backslash or a ';' takes the regex path; other text the split path.
+    assert same(loads(f'{pad}(a "q\\"" b){pad}'), [Symbol("a"), 'q"', Symbol("b")])
+    assert same(loads(f"{pad}(a b){pad}"), [Symbol("a"), Symbol("b")])
+
+
+@settings(max_examples=200)
+@given(values, st.sampled_from(["", " ", "\n", "\t \n"]))
+def test_round_trip_with_padding(value, pad):
+    assert same(loads(pad + dumps(value) + pad), value)

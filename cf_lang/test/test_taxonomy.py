@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+
 from cf_lang.ontology import PLAYER_METHODS
 from cf_lang.taxonomy import SERVICES, Direction, TaxonomyError
 

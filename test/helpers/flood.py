@@ -11,6 +11,7 @@ import sys
 import time
 
 import rclpy
+
 from cf_commag.client import Agent, inbox_topic
 from cf_lang.acl import AclMessage, AgentId, Performative
 

@@ -21,6 +21,8 @@ Angle = Field(ge=-math.pi, le=math.pi, description="radians, counter-clockwise")
 
 
 class Kick(Concept):
+    """Kick the ball (it must be within the kickable distance)."""
+
     power: float = Power
     direction: float = Angle
 
@@ -47,6 +49,8 @@ class Pass(Concept):
 
 
 class Dribble(Concept):
+    """Run to a target keeping the ball close."""
+
     target: AbsolutePositioning
     speed: float = Field(default=60.0, ge=0.0, le=100.0)
 
@@ -56,6 +60,8 @@ class Intercept(Concept):
 
 
 class Tackle(Concept):
+    """Try to take the ball from an opponent."""
+
     power: float = Power
 
 
@@ -66,6 +72,8 @@ class Catch(Concept):
 
 
 class MoveTo(Concept):
+    """Run to a target position."""
+
     target: AbsolutePositioning
     speed: float = Field(default=100.0, ge=0.0, le=100.0)
 
@@ -77,15 +85,21 @@ class Move(Concept):
 
 
 class Dash(Concept):
+    """Accelerate with a power in a direction relative to the body."""
+
     power: float = Field(ge=-100.0, le=100.0)
     direction: float = Field(default=0.0, ge=-math.pi, le=math.pi)
 
 
 class Turn(Concept):
+    """Turn the body by an angle."""
+
     angle: float = Angle
 
 
 class TurnToObject(Concept):
+    """Turn the body to face an object (a player, the ball, a flag or a goal)."""
+
     obj: Player | Ball | Flag | Goal
 
 
@@ -102,6 +116,8 @@ class TurnHead(Concept):
 
 
 class Say(Concept):
+    """Say a short message that nearby players hear."""
+
     message: str = Field(min_length=1, max_length=64)
 
 

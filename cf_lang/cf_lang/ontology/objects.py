@@ -46,6 +46,8 @@ class Flag(Concept):
 
 
 class Goal(Concept):
+    """A goal, named by the team that defends it."""
+
     KEY = ("whichTeam",)
     which_team: Team
     positioning: AbsolutePositioning | None = None
@@ -54,6 +56,8 @@ class Goal(Concept):
 
 
 class Line(Concept):
+    """A field line, as seen from the observer."""
+
     KEY = ("name",)
     name: LineName
     relative: RelativePositioning | None = None
@@ -72,6 +76,8 @@ class OffsideLine(Concept):
 
 
 class Ball(Concept):
+    """The ball: where it is (absolute and/or relative), how it moves, how old the estimate is."""
+
     positioning: AbsolutePositioning | None = None
     relative: RelativePositioning | None = None
     velocity: Velocity | None = None
@@ -95,6 +101,8 @@ class Player(Concept):
 
 
 class Referee(Concept):
+    """The referee's latest decision."""
+
     play_mode: PlayMode
 
 
