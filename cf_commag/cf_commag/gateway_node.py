@@ -1,0 +1,248 @@
+"""The gateway as a ROS node: the asyncio TCP server in its own thread, rclpy in the main one."""
+
+from __future__ import annotations
+
+import asyncio
+import sys
+import threading
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import rclpy
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from std_msgs.msg import String
+
+from cf_interfaces.msg import Registry as RegistryMsg
+from cf_interfaces.msg import RegistryEvent
+from cf_interfaces.srv import Deregister, Lookup, Register
+
+from .client import INBOX_QOS, SNAPSHOT_QOS, inbox_topic
+from .commag_node import EVENTS_QOS
+from .convert import entry_from_msg, to_msg
+from .gateway import Gateway, GatewayConfig, form
+from .records import Directory, Entry, Query, Record
+from .registry import Result
+
+_PARAMS = {
+    "host": ("127.0.0.1", "address to listen on (loopback unless told otherwise)"),
+    "port": (7700, "TCP port; 0 picks a free one (reported in the log and in port_file)"),
+    "token": ("", "if set, agents must give it in hello"),
+    "max_connections": (256, "connections served at once"),
+    "max_line_bytes": (65536, "longest line accepted; longer ones close the connection"),
+    "max_depth": (32, "deepest S-expression nesting accepted"),
+    "max_queue": (10000, "lines queued for one agent before it is disconnected as too slow"),
+    "max_pending_bytes": (4 << 20, "unsent bytes for one agent before it is disconnected as too slow"),
+    "default_lease": (2.0, "lease (s) for agents that do not ask for one"),
+    "hello_timeout": (10.0, "seconds a new connection has to say hello"),
+    "commag": ("/commag", "the ComMAg's node name"),
+    "port_file": ("", "if set, the bound port is written to this file"),
+}
+
+
+class GatewayNode(Node):
+    """TCP socket gateway: makes TCP agents full members of the framework.
+
+    Parameters: see _PARAMS (each declared with its description).
+    Uses the ComMAg's ``register``/``deregister``/``lookup`` services and
+    ``registry``/``events`` topics; publishes to and subscribes on
+    ``/cf/agents/<name>/inbox`` for its agents.
+    """
+
+    def __init__(self, **kwargs):
+        super().__init__("gateway", **kwargs)
+        for name, (default, description) in _PARAMS.items():
+            self.declare_parameter(name, default, ParameterDescriptor(description=description))
+        p = {name: self.get_parameter(name).value for name in _PARAMS}
+        self.config = GatewayConfig(**{k: v for k, v in p.items() if k in GatewayConfig.__dataclass_fields__})
+        commag = p["commag"]
+        self._register = self.create_client(Register, f"{commag}/register")
+        self._deregister = self.create_client(Deregister, f"{commag}/deregister")
+        self._lookup = self.create_client(Lookup, f"{commag}/lookup")
+        self._directory = Directory()
+        self.create_subscription(RegistryMsg, f"{commag}/registry", self._on_snapshot, SNAPSHOT_QOS)
+        self.create_subscription(RegistryEvent, f"{commag}/events", self._on_event, EVENTS_QOS)
+        self._inbox_publishers: dict[str, object] = {}
+        self._inboxes: dict[str, object] = {}
+        self._watchers: dict[object, Callable[[str], None]] = {}
+        self._renewed: dict[str, float] = {}
+        # Work the asyncio thread hands to the executor thread (entity creation is not thread-safe).
+        self._todo: list[Callable[[], None]] = []
+        self._todo_lock = threading.Lock()
+        self._wake = self.create_guard_condition(self._run_todo)
+        self.create_timer(0.1, self._renew_due)
+        self.loop = asyncio.new_event_loop()
+        self.gateway = Gateway(self.config, self, log=self.get_logger().error)
+        self._thread = threading.Thread(target=self.loop.run_forever, name="gateway-asyncio", daemon=True)
+        self._thread.start()
+        port = asyncio.run_coroutine_threadsafe(self.gateway.start(), self.loop).result(timeout=10)
+        self.get_logger().info(f"gateway listening on {self.config.host}:{port}")
+        if p["port_file"]:
+            Path(p["port_file"]).write_text(f"{port}\n")
+
+    # ---- thread hand-off ----------------------------------------------------
+
+    def _on_ros(self, fn: Callable[[], None]) -> None:
+        with self._todo_lock:
+            self._todo.append(fn)
+        self._wake.trigger()
+
+    def _run_todo(self) -> None:
+        with self._todo_lock:
+            todo, self._todo = self._todo, []
+        for fn in todo:
+            fn()
+
+    def _to_loop(self, fn: Callable, *args) -> None:
+        self.loop.call_soon_threadsafe(fn, *args)
+
+    def _call(self, client, request) -> asyncio.Future:
+        """A ROS service call awaited from the asyncio side."""
+        result: asyncio.Future = self.loop.create_future()
+
+        def settle(ok: bool, value) -> None:
+            if not result.done():
+                result.set_result(value) if ok else result.set_exception(value)
+
+        def start() -> None:
+            if not client.service_is_ready():
+                self._to_loop(settle, False, RuntimeError("the ComMAg is not reachable"))
+                return
+            future = client.call_async(request)
+            future.add_done_callback(
+                lambda f: self._to_loop(settle, f.exception() is None, f.exception() or f.result())
+            )
+
+        self._on_ros(start)
+        return result
+
+    # ---- the Bus ------------------------------------------------------------
+
+    async def register(self, record: Record) -> Result:
+        try:
+            res = await asyncio.wait_for(self._call(self._register, Register.Request(component=to_msg(record))), 5.0)
+        except (TimeoutError, RuntimeError) as exc:
+            return Result(False, f"ComMAg did not answer: {exc or 'timeout'}")
+        if res.accepted:
+            self._renewed[record.name] = time.monotonic()
+        return Result(res.accepted, res.reason, res.lease_period)
+
+    async def deregister(self, name: str) -> Result:
+        self._renewed.pop(name, None)
+        try:
+            res = await asyncio.wait_for(self._call(self._deregister, Deregister.Request(name=name)), 5.0)
+        except (TimeoutError, RuntimeError) as exc:
+            return Result(False, f"ComMAg did not answer: {exc or 'timeout'}")
+        return Result(res.accepted, res.reason)
+
+    async def lookup(self, query: Query) -> list[Entry]:
+        request = Lookup.Request(
+            service_class=query.service_class,
+            direction=int(query.direction),
+            team=query.team,
+            player_number=query.player_number,
+            include_suspect=query.include_suspect,
+            max_results=query.max_results,
+        )
+        try:
+            res = await asyncio.wait_for(self._call(self._lookup, request), 5.0)
+        except (TimeoutError, RuntimeError) as exc:
+            raise ValueError(f"ComMAg did not answer: {exc or 'timeout'}") from None
+        if not res.ok:
+            raise ValueError(res.reason)
+        return [entry_from_msg(p) for p in res.providers]
+
+    def known(self, name: str) -> bool:
+        entry = self._directory.get(name)
+        return entry is not None and entry.state.value != "withdrawn"
+
+    def publish(self, receiver: str, text: str) -> None:
+        pub = self._inbox_publishers.get(receiver)
+        if pub is None:
+            pub = self._inbox_publishers[receiver] = self.create_publisher(String, inbox_topic(receiver), INBOX_QOS)
+        pub.publish(String(data=text))
+
+    def open_inbox(self, name: str, deliver: Callable[[str], None]) -> None:
+        def create() -> None:
+            self._inboxes[name] = self.create_subscription(
+                String, inbox_topic(name), lambda m: self._to_loop(deliver, m.data), INBOX_QOS
+            )
+
+        self._on_ros(create)
+
+    def close_inbox(self, name: str) -> None:
+        def destroy() -> None:
+            sub = self._inboxes.pop(name, None)
+            if sub is not None:
+                self.destroy_subscription(sub)
+
+        self._renewed.pop(name, None)
+        self._on_ros(destroy)
+
+    def watch_events(self, key: object, deliver: Callable[[str], None] | None) -> None:
+        if deliver is None:
+            self._watchers.pop(key, None)
+        else:
+            self._watchers[key] = deliver
+
+    # ---- ROS callbacks ------------------------------------------------------
+
+    def _on_snapshot(self, msg: RegistryMsg) -> None:
+        directory = Directory()
+        for rec in msg.records:
+            try:
+                directory.put(entry_from_msg(rec))
+            except ValueError:
+                continue
+        self._directory = directory
+
+    def _on_event(self, ev: RegistryEvent) -> None:
+        if not self._watchers:
+            return
+        line = form(
+            "event",
+            kind=ev.kind_name,
+            name=ev.record.name,
+            service_class=ev.record.service_class,
+            state=ev.record.state,
+            team=ev.record.team,
+            player=ev.record.player_number,
+            reason=ev.reason,
+        )
+        for deliver in list(self._watchers.values()):
+            self._to_loop(deliver, line)
+
+    def _renew_due(self) -> None:
+        """Renew the agents that showed life within their lease, three times per lease."""
+        now = time.monotonic()
+        for record in self.gateway.due_renewals(now):
+            last = self._renewed.get(record.name)
+            if last is not None and now - last >= record.lease_period / 3 and self._register.service_is_ready():
+                self._renewed[record.name] = now
+                self._register.call_async(Register.Request(component=to_msg(record)))
+
+    def shutdown(self) -> None:
+        asyncio.run_coroutine_threadsafe(self.gateway.stop(), self.loop).result(timeout=5)
+        self.loop.call_soon_threadsafe(self.loop.stop)
+        self._thread.join(timeout=5)
+
+
+def main(args: list[str] | None = None) -> int:
+    """Entry point of ``ros2 run cf_commag gateway``."""
+    rclpy.init(args=args if args is not None else sys.argv)
+    node = GatewayNode()
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.shutdown()
+        node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

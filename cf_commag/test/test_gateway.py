@@ -1,0 +1,286 @@
+"""The gateway core over real TCP sockets, with a fake bus in place of ROS."""
+
+from __future__ import annotations
+
+import asyncio
+import socket
+import threading
+import time
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from cf_commag.gateway import Gateway, GatewayConfig
+from cf_commag.gateway_client import GatewayClient, GatewayError
+from cf_commag.records import Entry, Query
+from cf_commag.registry import Registry, Result
+from cf_lang.acl import AclMessage, AgentId, Performative
+
+
+class FakeBus:
+    """The framework as the gateway sees it: a real registry core, inboxes as callbacks."""
+
+    def __init__(self):
+        self.registry = Registry()
+        self.inboxes = {}
+        self.published = []
+        self.watchers = {}
+
+    async def register(self, record) -> Result:
+        return self.registry.register(record, now=time.monotonic())[0]
+
+    async def deregister(self, name) -> Result:
+        return self.registry.deregister(name, now=time.monotonic())[0]
+
+    async def lookup(self, query: Query) -> list[Entry]:
+        return self.registry.lookup(query)
+
+    def known(self, name):
+        return name in self.registry.directory or name in self.inboxes
+
+    def publish(self, receiver, text):
+        self.published.append((receiver, text))
+        deliver = self.inboxes.get(receiver)
+        if deliver is not None:
+            deliver(text)
+
+    def open_inbox(self, name, deliver):
+        self.inboxes[name] = deliver
+
+    def close_inbox(self, name):
+        self.inboxes.pop(name, None)
+
+    def watch_events(self, key, deliver):
+        if deliver is None:
+            self.watchers.pop(key, None)
+        else:
+            self.watchers[key] = deliver
+
+
+class Server:
+    """A gateway on its own asyncio loop thread, on an ephemeral loopback port."""
+
+    def __init__(self, **config):
+        self.bus = FakeBus()
+        self.loop = asyncio.new_event_loop()
+        self.thread = threading.Thread(target=self.loop.run_forever, daemon=True)
+        self.thread.start()
+        self.logs = []
+        self.gateway = Gateway(GatewayConfig(port=0, **config), self.bus, log=self.logs.append)
+        self.port = asyncio.run_coroutine_threadsafe(self.gateway.start(), self.loop).result(5)
+
+    def on_loop(self, fn, *args):
+        self.loop.call_soon_threadsafe(fn, *args)
+
+    def raw(self) -> socket.socket:
+        return socket.create_connection(("127.0.0.1", self.port), timeout=10)
+
+    def client(self, name, **kw) -> GatewayClient:
+        return GatewayClient("127.0.0.1", self.port, name=name, **kw)
+
+    def stop(self):
+        asyncio.run_coroutine_threadsafe(self.gateway.stop(), self.loop).result(5)
+        self.loop.call_soon_threadsafe(self.loop.stop)
+        self.thread.join(5)
+
+
+@pytest.fixture
+def server():
+    s = Server(max_line_bytes=4096, max_depth=16, max_queue=50, max_pending_bytes=256 * 1024, hello_timeout=2.0)
+    yield s
+    s.stop()
+
+
+def lines(sock: socket.socket, count: int) -> list[str]:
+    data = b""
+    while data.count(b"\n") < count:
+        chunk = sock.recv(65536)
+        if not chunk:
+            break
+        data += chunk
+    return [line for line in data.decode(errors="replace").split("\n") if line]
+
+
+def until_pong(sock: socket.socket) -> list[str]:
+    """Read lines until (pong) or a final (error ...)."""
+    data = b""
+    while True:
+        got = [line for line in data.decode(errors="replace").split("\n") if line]
+        if any(g == "(pong)" or g.startswith("(error") for g in got):
+            return got
+        chunk = sock.recv(65536)
+        if not chunk:
+            return got
+        data += chunk
+
+
+def test_binds_loopback_and_reports_its_port(server):
+    assert server.gateway.config.host == "127.0.0.1" and server.port > 0
+
+
+def test_session_register_lookup_and_relay(server):
+    with server.client("alice") as alice, server.client("bob") as bob:
+        assert alice.welcome["version"] == 1
+        assert alice.register("Kick", team="blue", player=3) == 2.0
+        assert [p["name"] for p in bob.lookup("Shoot", team="blue")] == ["alice"]  # Kick serves Shoot
+        assert [p["name"] for p in bob.lookup("Action")] == []  # ... but not any Action
+        assert [p["name"] for p in bob.lookup("Action", direction="specific")] == ["alice"]
+        record = server.bus.registry.directory.get("alice").record
+        assert record.transport.value == "tcp" and record.launch_command == () and record.address == "127.0.0.1"
+        bob.send(
+            AclMessage(
+                Performative.INFORM, receivers=(AgentId("alice"),), content="(Game :time 1)", conversation_id="c1"
+            )
+        )
+        got = alice.receive()
+        assert got.sender == AgentId("bob") and got.content == "(Game :time 1)"
+        alice.ping()
+
+
+@pytest.mark.parametrize(
+    ("line", "answer"),
+    [
+        (b"(((", "not-understood :reason \"unclosed '('"),
+        (b"\xff\xfe garbage", 'not-understood :reason "invalid UTF-8'),
+        (b"(" * 40 + b")" * 40, 'not-understood :reason "nesting too deep'),
+        (b"hello", 'not-understood :reason "expected (command'),
+        (b"(dance :now 1)", 'not-understood :reason "unknown command dance'),
+        (b"(register :service-class Juggle)", 'failure :in-reply-to "register" :reason "unknown service class'),
+        (b'(register :service-class Kick :launch-command (sequence "/bin/sh"))', "cannot register a launch command"),
+        (b"(lookup :service-class Kick :direction sideways)", "direction must be one of"),
+        (b'(inform :receiver nobody :content "x")', "unknown receiver nobody"),
+        (b'(inform :sender mallory :receiver alice :content "x")', "you are carol, not mallory"),
+        (b"(inform :receiver)", "not-understood"),
+        (b"(hello :name carol)", "already connected as carol"),
+    ],
+)
+def test_bad_input_is_answered_and_the_connection_stays(server, line, answer):
+    with server.client("alice"):
+        sock = server.raw()
+        sock.sendall(b"(hello :name carol)\n" + line + b"\n(ping)\n")
+        got = lines(sock, 3)
+        assert got[0].startswith("(welcome")
+        assert answer in got[1], got[1]
+        assert got[2] == "(pong)"
+        sock.close()
+
+
+def test_commands_before_hello_and_bad_names(server):
+    sock = server.raw()
+    sock.sendall(b"(ping)\n(hello :name 7up)\n(hello :name ok_name)\n")
+    got = lines(sock, 3)
+    assert "say (hello :name ...) first" in got[0]
+    assert "must match" in got[1]
+    assert got[2].startswith("(welcome")
+
+
+def test_oversized_line_closes_with_a_final_error(server):
+    sock = server.raw()
+    sock.sendall(b"(hello :name big)\n(ping " + b"x" * 10_000 + b")\n")
+    got = lines(sock, 5)
+    assert got[0].startswith("(welcome")
+    assert got[-1].startswith("(error") and "longer than 4096 bytes" in got[-1]
+    assert sock.recv(100) == b""  # closed
+
+
+def test_disconnect_mid_line_releases_everything(server):
+    sock = server.raw()
+    sock.sendall(b"(hello :name halfway)\n(register :service-class Kick)\n(ping :half")
+    lines(sock, 2)
+    assert "halfway" in server.bus.inboxes
+    sock.close()
+    deadline = time.monotonic() + 5
+    while "halfway" in server.bus.inboxes and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert "halfway" not in server.bus.inboxes and "halfway" not in server.gateway.sessions
+    # The ComMAg decides about the component: the gateway stops renewing it.
+    assert server.gateway.due_renewals(time.monotonic()) == []
+
+
+def test_wrong_token_is_refused_and_closed():
+    server = Server(token="s3cret")
+    try:
+        with pytest.raises(GatewayError, match="wrong token"):
+            server.client("intruder", token="guess")
+        with server.client("friend", token="s3cret") as ok:
+            ok.ping()
+    finally:
+        server.stop()
+
+
+def test_silent_connection_must_say_hello_in_time(server):
+    sock = server.raw()
+    got = lines(sock, 1)
+    assert "no hello within 2.0 s" in got[0]
+
+
+def test_too_many_connections():
+    server = Server(max_connections=1)
+    try:
+        with server.client("first"):
+            sock = server.raw()
+            assert "too many connections" in lines(sock, 1)[0]
+    finally:
+        server.stop()
+
+
+def test_a_reader_that_never_reads_is_cut_off_and_others_keep_being_served(server):
+    slow = server.raw()
+    slow.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
+    slow.sendall(b"(hello :name sloth)\n")
+    lines(slow, 1)
+    with server.client("fast") as fast:
+        deliver = server.bus.inboxes["sloth"]
+        big = '(inform :sender x :content "' + "y" * 2000 + '")'
+        for _ in range(5000):  # 10 MB: far more than the socket buffers and the limits hold
+            server.on_loop(deliver, big)
+            fast.ping()  # the fast client is answered all along
+        deadline = time.monotonic() + 10
+        while "sloth" in server.gateway.sessions and time.monotonic() < deadline:
+            fast.ping()
+        assert "sloth" not in server.gateway.sessions
+        assert server.gateway.slow_disconnects == 1
+        fast.ping()
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.lists(st.binary(max_size=200).filter(lambda b: b"\n" not in b), min_size=1, max_size=5))
+def test_fuzzed_frames_never_break_the_gateway(server, frames):
+    sock = server.raw()
+    sock.sendall(b"(hello :name fuzz)\n" + b"\n".join(frames) + b"\n(ping)\n")
+    got = until_pong(sock)
+    assert got[0].startswith("(welcome")
+    assert got[-1] == "(pong)" or got[-1].startswith("(error")
+    sock.close()
+    deadline = time.monotonic() + 5
+    while "fuzz" in server.gateway.sessions and time.monotonic() < deadline:
+        time.sleep(0.01)
+    with server.client("after_fuzz") as c:
+        c.ping()
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(
+    st.sampled_from(
+        [
+            b"(hello :name m)",
+            b"(register :service-class Kick)",
+            b"(lookup :service-class Kick)",
+            b'(inform :receiver m :content "x")',
+            b"(ping)",
+        ]
+    ),
+    st.integers(0, 40),
+    st.binary(min_size=1, max_size=3),
+)
+def test_mutated_frames(server, frame, at, junk):
+    mutated = (frame[:at] + junk + frame[at:]).replace(b"\n", b" ")
+    sock = server.raw()
+    sock.sendall(b"(hello :name mut)\n" + mutated + b"\n(ping)\n")
+    got = until_pong(sock)
+    assert got[0].startswith("(welcome") and got[-1] == "(pong)"
+    sock.close()
+    deadline = time.monotonic() + 5
+    while "mut" in server.gateway.sessions and time.monotonic() < deadline:
+        time.sleep(0.01)
