@@ -65,6 +65,67 @@ def inbox_topic(name: str) -> str:
     return f"/cf/agents/{name}/inbox"
 
 
+class Outbox:
+    """Publishers to agents' inboxes, one per receiver.
+
+    A new publisher is not matched with the receiver's subscription at once
+    (DDS discovery takes a moment) and what it publishes before that is lost.
+    So messages for a receiver are held until its inbox is matched, then sent
+    in order by :meth:`flush` (call it from a timer). Messages held longer
+    than ``hold_seconds`` are dropped and counted in ``undeliverable``.
+    """
+
+    def __init__(self, node: Node, *, hold_seconds: float = 10.0):
+        self._node = node
+        self._hold = hold_seconds
+        self._publishers: dict[str, object] = {}
+        self._held: dict[str, list[tuple[float, str]]] = {}
+        self.undeliverable = 0
+
+    def send(self, receiver: str, text: str) -> None:
+        pub = self._publishers.get(receiver)
+        if pub is None:
+            pub = self._publishers[receiver] = self._node.create_publisher(String, inbox_topic(receiver), INBOX_QOS)
+        held = self._held.get(receiver)
+        if held is None and pub.get_subscription_count() > 0:
+            pub.publish(String(data=text))
+            return
+        self._held.setdefault(receiver, []).append((time.monotonic(), text))
+
+    def flush(self) -> None:
+        """Send held messages whose receiver is now matched; drop the ones held too long."""
+        now = time.monotonic()
+        for receiver, held in list(self._held.items()):
+            pub = self._publishers[receiver]
+            if pub.get_subscription_count() > 0:
+                for _, text in held:
+                    pub.publish(String(data=text))
+                del self._held[receiver]
+            elif now - held[0][0] > self._hold:
+                fresh = [(t, m) for t, m in held if now - t <= self._hold]
+                self.undeliverable += len(held) - len(fresh)
+                self._node.get_logger().warning(
+                    f"no inbox of {receiver!r} appeared: {len(held) - len(fresh)} message(s) dropped",
+                    throttle_duration_sec=5.0,
+                )
+                if fresh:
+                    self._held[receiver] = fresh
+                else:
+                    del self._held[receiver]
+
+    @property
+    def held(self) -> int:
+        return sum(len(h) for h in self._held.values())
+
+    def wait_acked(self, timeout: float) -> bool:
+        deadline = time.monotonic() + timeout
+        for pub in self._publishers.values():
+            left = max(0.0, deadline - time.monotonic())
+            if not pub.wait_for_all_acked(Duration(nanoseconds=int(left * 1e9))):
+                return False
+        return True
+
+
 class Refuse(Exception):
     """Raise from a handler to answer ``refuse`` with this reason."""
 
@@ -180,7 +241,7 @@ class Agent:
         self._futures: dict[str, tuple[Future, Callable | None]] = {}
         self._responders: dict[str, Responder] = {}
         self._handlers: dict[str, Handler] = {}
-        self._publishers: dict[str, object] = {}
+        self._outbox = Outbox(node)
         self._directory = Directory()
         self._directory_stamp = 0.0
         self._pending_register: Future | None = None
@@ -194,7 +255,7 @@ class Agent:
         self._snapshot_sub = node.create_subscription(
             RegistryMsg, f"{commag}/registry", self._on_snapshot, SNAPSHOT_QOS
         )
-        self._timers = [node.create_timer(0.05, self._on_expire_timer)]
+        self._timers = [node.create_timer(0.02, self._on_expire_timer)]
         if register:
             # Three renewals per lease: one late or lost renewal is not a missed lease.
             self._timers.append(node.create_timer(max(0.02, lease / 3.0), self._renew))
@@ -313,14 +374,10 @@ class Agent:
         """Publish a message to each receiver's inbox."""
         text = acl.to_text(msg if msg.sender else msg.with_(sender=self.me))
         for receiver in msg.receivers:
-            pub = self._publishers.get(receiver.name)
-            if pub is None:
-                if not valid_agent_name(receiver.name):
-                    self._log.warning(f"cannot send to {receiver.name!r}: not an agent name")
-                    continue
-                pub = self.node.create_publisher(String, inbox_topic(receiver.name), INBOX_QOS)
-                self._publishers[receiver.name] = pub
-            pub.publish(String(data=text))
+            if not valid_agent_name(receiver.name):
+                self._log.warning(f"cannot send to {receiver.name!r}: not an agent name")
+                continue
+            self._outbox.send(receiver.name, text)
             self.counters["sent"] += 1
 
     def flush(self, timeout: float = 5.0) -> bool:
@@ -330,11 +387,10 @@ class Agent:
         the process. Returns False if the timeout passed first.
         """
         deadline = time.monotonic() + timeout
-        for pub in self._publishers.values():
-            left = max(0.0, deadline - time.monotonic())
-            if not pub.wait_for_all_acked(Duration(nanoseconds=int(left * 1e9))):
-                return False
-        return True
+        while self._outbox.held and time.monotonic() < deadline:
+            time.sleep(0.01)
+            self._outbox.flush()
+        return self._outbox.held == 0 and self._outbox.wait_acked(max(0.0, deadline - time.monotonic()))
 
     def request(
         self,
@@ -469,6 +525,7 @@ class Agent:
             responder.inform(result)
 
     def _on_expire_timer(self) -> None:
+        self._outbox.flush()
         for conv in self._table.expire(time.monotonic()):
             future, _ = self._futures.pop(conv.conversation_id, (None, None))
             if future is not None and not future.done():

@@ -19,7 +19,7 @@ from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.msg import RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 
-from .client import INBOX_QOS, SNAPSHOT_QOS, inbox_topic
+from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic
 from .commag_node import EVENTS_QOS
 from .convert import entry_from_msg, to_msg
 from .gateway import Gateway, GatewayConfig, form
@@ -64,7 +64,7 @@ class GatewayNode(Node):
         self._directory = Directory()
         self.create_subscription(RegistryMsg, f"{commag}/registry", self._on_snapshot, SNAPSHOT_QOS)
         self.create_subscription(RegistryEvent, f"{commag}/events", self._on_event, EVENTS_QOS)
-        self._inbox_publishers: dict[str, object] = {}
+        self._outbox = Outbox(self)
         self._inboxes: dict[str, object] = {}
         self._watchers: dict[object, Callable[[str], None]] = {}
         self._renewed: dict[str, float] = {}
@@ -73,6 +73,7 @@ class GatewayNode(Node):
         self._todo_lock = threading.Lock()
         self._wake = self.create_guard_condition(self._run_todo)
         self.create_timer(0.1, self._renew_due)
+        self.create_timer(0.02, self._outbox.flush)
         self.loop = asyncio.new_event_loop()
         self.gateway = Gateway(self.config, self, log=self.get_logger().error)
         self._thread = threading.Thread(target=self.loop.run_forever, name="gateway-asyncio", daemon=True)
@@ -98,8 +99,16 @@ class GatewayNode(Node):
     def _to_loop(self, fn: Callable, *args) -> None:
         self.loop.call_soon_threadsafe(fn, *args)
 
-    def _call(self, client, request) -> asyncio.Future:
-        """A ROS service call awaited from the asyncio side."""
+    async def _call(self, client, request, timeout: float = 5.0):
+        """A ROS service call awaited from the asyncio side (waits for the ComMAg to be discovered)."""
+        deadline = time.monotonic() + timeout
+        while not client.service_is_ready():
+            if time.monotonic() > deadline:
+                raise RuntimeError("the ComMAg is not reachable")
+            await asyncio.sleep(0.05)
+        return await asyncio.wait_for(self._start_call(client, request), max(0.1, deadline - time.monotonic()))
+
+    def _start_call(self, client, request) -> asyncio.Future:
         result: asyncio.Future = self.loop.create_future()
 
         def settle(ok: bool, value) -> None:
@@ -122,7 +131,7 @@ class GatewayNode(Node):
 
     async def register(self, record: Record) -> Result:
         try:
-            res = await asyncio.wait_for(self._call(self._register, Register.Request(component=to_msg(record))), 5.0)
+            res = await self._call(self._register, Register.Request(component=to_msg(record)))
         except (TimeoutError, RuntimeError) as exc:
             return Result(False, f"ComMAg did not answer: {exc or 'timeout'}")
         if res.accepted:
@@ -132,7 +141,7 @@ class GatewayNode(Node):
     async def deregister(self, name: str) -> Result:
         self._renewed.pop(name, None)
         try:
-            res = await asyncio.wait_for(self._call(self._deregister, Deregister.Request(name=name)), 5.0)
+            res = await self._call(self._deregister, Deregister.Request(name=name))
         except (TimeoutError, RuntimeError) as exc:
             return Result(False, f"ComMAg did not answer: {exc or 'timeout'}")
         return Result(res.accepted, res.reason)
@@ -147,7 +156,7 @@ class GatewayNode(Node):
             max_results=query.max_results,
         )
         try:
-            res = await asyncio.wait_for(self._call(self._lookup, request), 5.0)
+            res = await self._call(self._lookup, request)
         except (TimeoutError, RuntimeError) as exc:
             raise ValueError(f"ComMAg did not answer: {exc or 'timeout'}") from None
         if not res.ok:
@@ -159,10 +168,7 @@ class GatewayNode(Node):
         return entry is not None and entry.state.value != "withdrawn"
 
     def publish(self, receiver: str, text: str) -> None:
-        pub = self._inbox_publishers.get(receiver)
-        if pub is None:
-            pub = self._inbox_publishers[receiver] = self.create_publisher(String, inbox_topic(receiver), INBOX_QOS)
-        pub.publish(String(data=text))
+        self._on_ros(lambda: self._outbox.send(receiver, text))
 
     def open_inbox(self, name: str, deliver: Callable[[str], None]) -> None:
         def create() -> None:

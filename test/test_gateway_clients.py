@@ -1,0 +1,128 @@
+"""Agents in Java, Prolog and Python join through the installed gateway and talk with ROS agents.
+
+Needs `java` (JDK 17) and `swipl` (Debian swi-prolog-nox). .ci/run installs them and sets
+CF_REQUIRE_FOREIGN_CLIENTS=1, so in CI these tests fail rather than skip when one is missing.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import time
+from pathlib import Path
+
+import pytest
+
+from cf_commag.client import Agent
+from cf_commag.gateway_client import GatewayClient
+from cf_system import executable, start_commag, start_component
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def need(tool: str) -> str:
+    path = shutil.which(tool)
+    if path is None:
+        if os.environ.get("CF_REQUIRE_FOREIGN_CLIENTS") == "1":
+            pytest.fail(f"{tool} is required here (CF_REQUIRE_FOREIGN_CLIENTS=1) but not installed")
+        pytest.skip(
+            f"{tool} is not installed (Debian: {'openjdk-17-jdk-headless' if tool == 'java' else 'swi-prolog-nox'})"
+        )
+    return path
+
+
+@pytest.fixture
+def framework(procs, probe, tag, tmp_path):
+    """ComMAg + gateway + a ROS Kick provider; returns the gateway's port."""
+    start_commag(procs, tag, tmp_path)
+    port_file = tmp_path / "gateway.port"
+    procs.start(
+        [
+            executable("cf_commag", "gateway"),
+            "--ros-args",
+            "-r",
+            f"__node:=gateway_{tag}",
+            "-p",
+            "port:=0",
+            "-p",
+            f"port_file:={port_file}",
+            "-p",
+            f"commag:=/commag_{tag}",
+        ],
+        "gateway",
+    )
+    start_component(procs, tag, f"kick_{tag}", "--service-class", "Kick", "--team", "blue")
+    probe.wait_kind(f"kick_{tag}", "registered")
+    probe.spin_until(lambda: port_file.exists() and port_file.read_text().strip(), what="gateway port")
+    return int(port_file.read_text())
+
+
+def run_foreign_agent(procs, probe, tag, argv, log_name, agent_name):
+    """The foreign agent asks the ROS Kick provider, then a ROS agent asks it; both answers are checked."""
+    proc = procs.start(argv, log_name)
+    probe.spin_until(
+        lambda: "SERVING" in procs.log(log_name) or proc.poll() is not None, timeout=60, what=f"{log_name} to serve"
+    )
+    log = procs.log(log_name)
+    assert "REGISTERED" in log and f"PROVIDERS [kick_{tag}]" in log, log
+    assert "ANSWER inform (done 1)" in log, log
+    # It registered through the gateway: the ComMAg knows it as a TCP component.
+    assert probe.lookup("PlayerDecision", team="blue") == [agent_name]
+    # Now a ROS agent runs a fipa-request with it.
+    asker = Agent(probe.node, name=f"asker_{tag}", service_class="Monitoring", commag=f"/commag_{tag}")
+    probe.spin_until(lambda: asker.registered, what="asker registered")
+    future = asker.request(
+        agent_name, "(exec Player kick :playerNumber 9 :whichTeam our :power 50 :direction 0)", timeout=20.0
+    )
+    probe.spin_until(future.done, timeout=30, what="answer from the foreign agent")
+    reply = future.result()
+    asker.close()
+    assert reply.ok, (reply, procs.log(log_name))
+    assert proc.wait(timeout=30) == 0, procs.log(log_name)
+    assert f"SERVED asker_{tag}" in procs.log(log_name) and "BYE" in procs.log(log_name)
+    return reply
+
+
+def test_java_agent(framework, procs, probe, tag):
+    java = need("java")
+    name = f"java_{tag}"
+    argv = [java, str(ROOT / "clients/java/CfGatewayClient.java"), "127.0.0.1", str(framework), name]
+    reply = run_foreign_agent(procs, probe, tag, argv, "java", name)
+    assert reply.content.startswith("(done-by-java")
+    probe.wait_kind(name, "deregistered")  # (bye) deregisters
+
+
+def test_prolog_agent(framework, procs, probe, tag):
+    swipl = need("swipl")
+    name = f"prolog_{tag}"
+    argv = [swipl, str(ROOT / "clients/prolog/cf_gateway_client.pl"), "127.0.0.1", str(framework), name]
+    reply = run_foreign_agent(procs, probe, tag, argv, "prolog", name)
+    assert reply.content == "(done-by-prolog)"
+
+
+def test_python_agent_and_lease_kept_by_its_own_messages(framework, procs, probe, tag):
+    name = f"py_{tag}"
+    with GatewayClient("127.0.0.1", framework, name=name) as gw:
+        assert gw.register("WorldModel", team="blue", player=2, lease=0.6) == 0.6
+        assert [p["name"] for p in gw.lookup("Kick", team="blue")] == [f"kick_{tag}"]
+        answer = gw.request(f"kick_{tag}", "(val Game time)", protocol="fipa-query")
+        assert answer.performative.value == "inform" and answer.content.startswith("(Game :time")
+        for _ in range(10):  # pings keep the lease alive
+            gw.ping()
+            probe.spin_for(0.2)
+        assert "suspect" not in probe.kinds(name)
+        # A hung agent (connected, silent) is detected like any other component, and withdrawn:
+        # it has no launch command, and a TCP agent can never get one.
+        probe.wait_kind(name, "suspect", timeout=20)
+        probe.wait_kind(name, "withdrawn", timeout=20)
+        assert probe.lookup("WorldModel") == []
+
+
+def test_vanished_agent_is_withdrawn(framework, procs, probe, tag):
+    name = f"gone_{tag}"
+    gw = GatewayClient("127.0.0.1", framework, name=name)
+    gw.register("Hearing", lease=0.5)
+    probe.wait_kind(name, "registered")
+    gw.sock.close()  # no bye: it just vanishes
+    probe.wait_kind(name, "withdrawn", timeout=20)
+    time.sleep(0.1)
