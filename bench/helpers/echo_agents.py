@@ -1,0 +1,45 @@
+"""Responders for bench_gateway.py, each in its own process.
+
+echo_agents.py ros-echo       # raw rclpy: /bench/ping -> /bench/pong
+echo_agents.py agent NAME     # a framework agent that sends every message's content back to its sender
+"""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+
+import rclpy
+from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+from std_msgs.msg import String
+
+from cf_commag.client import Agent
+from cf_lang.acl import AclMessage, Performative
+
+QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
+
+
+def ros_echo() -> None:
+    node = rclpy.create_node("bench_ros_echo")
+    pub = node.create_publisher(String, "/bench/pong", QOS)
+    node.create_subscription(String, "/bench/ping", pub.publish, QOS)
+    print("ready", flush=True)
+    rclpy.spin(node)
+
+
+def agent(name: str) -> None:
+    node = rclpy.create_node(name)
+    box = {}
+
+    def echo(msg: AclMessage) -> None:
+        box["agent"].send(AclMessage(Performative.INFORM, receivers=(msg.sender,), content=msg.content))
+
+    box["agent"] = Agent(node, name=name, service_class="Monitoring", on_message=echo, commag=sys.argv[3])
+    print("ready", flush=True)
+    rclpy.spin(node)
+
+
+if __name__ == "__main__":
+    rclpy.init()
+    with contextlib.suppress(KeyboardInterrupt):
+        ros_echo() if sys.argv[1] == "ros-echo" else agent(sys.argv[2])
