@@ -6,7 +6,7 @@
 - sustained throughput through the gateway with many messages in flight, every one counted;
 - 200 concurrent TCP clients doing round trips.
 
-    python bench/bench_gateway.py [--rounds 2000]
+    python bench/bench_gateway.py [--rounds 2000] [--executor events|single]
 """
 
 from __future__ import annotations
@@ -29,6 +29,7 @@ from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy  # noqa: E402
 from std_msgs.msg import String  # noqa: E402
 
 from cf_commag.gateway_client import GatewayClient  # noqa: E402
+from cf_commag.gateway_node import make_executor  # noqa: E402
 from cf_system import Processes, executable, start_commag  # noqa: E402
 
 QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
@@ -65,28 +66,32 @@ def raw_tcp(rounds: int) -> list[float]:
     return out
 
 
-def raw_rclpy(rounds: int) -> list[float]:
-    node = rclpy.create_node("bench_pinger")
+def raw_rclpy(rounds: int, kind: str) -> list[float]:
+    node = rclpy.create_node(f"bench_pinger_{kind}")
+    executor = make_executor(kind)
+    executor.add_node(node)
     got = []
-    node.create_subscription(String, "/bench/pong", lambda m: got.append(m), QOS)
-    pub = node.create_publisher(String, "/bench/ping", QOS)
+    node.create_subscription(String, f"/bench/pong_{kind}", got.append, QOS)
+    pub = node.create_publisher(String, f"/bench/ping_{kind}", QOS)
     deadline = time.monotonic() + 20
-    while (
-        pub.get_subscription_count() == 0 or node.count_publishers("/bench/pong") == 0
-    ) and time.monotonic() < deadline:
-        rclpy.spin_once(node, timeout_sec=0.05)
+    while pub.get_subscription_count() == 0 and time.monotonic() < deadline:
+        executor.spin_once(timeout_sec=0.05)
     for _ in range(20):  # warm-up and matching
         pub.publish(String(data=PAYLOAD))
-        rclpy.spin_once(node, timeout_sec=0.5)
+        executor.spin_once(timeout_sec=0.5)
+    time.sleep(0.5)
+    for _ in range(50):
+        executor.spin_once(timeout_sec=0.01)
     got.clear()
     out = []
     for _ in range(rounds):
         t0 = time.perf_counter()
         pub.publish(String(data=PAYLOAD))
         while not got:
-            rclpy.spin_once(node, timeout_sec=1.0)
+            executor.spin_once(timeout_sec=1.0)
         got.pop()
         out.append((time.perf_counter() - t0) * 1e6)
+    executor.shutdown()
     node.destroy_node()
     return out
 
@@ -175,6 +180,12 @@ def many_clients(port: int, tag: str, echo: str, clients: int, rounds: int) -> t
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--rounds", type=int, default=2000)
+    parser.add_argument(
+        "--executor",
+        choices=["events", "single"],
+        default="events",
+        help="the rclpy executor of every ROS process in the run (gateway, agents, baseline)",
+    )
     args = parser.parse_args()
     tag = "g" + uuid.uuid4().hex[:8]
     tmp = Path(tempfile.mkdtemp(prefix="cf-bench-gw-"))
@@ -183,6 +194,7 @@ def main() -> None:
     try:
         start_commag(procs, tag, tmp)
         port_file = tmp / "port"
+        kind = args.executor
         procs.start(
             [
                 executable("cf_commag", "gateway"),
@@ -195,12 +207,15 @@ def main() -> None:
                 f"port_file:={port_file}",
                 "-p",
                 f"commag:=/commag_{tag}",
+                "-p",
+                f"executor:={kind}",
             ],
             "gateway",
         )
         echo = f"echo_{tag}"
-        procs.start([sys.executable, str(HERE / "helpers/echo_agents.py"), "agent", echo, f"/commag_{tag}"], "echo")
-        procs.start([sys.executable, str(HERE / "helpers/echo_agents.py"), "ros-echo"], "ros-echo")
+        helper = str(HERE / "helpers/echo_agents.py")
+        procs.start([sys.executable, helper, "agent", echo, f"/commag_{tag}", kind], "echo")
+        procs.start([sys.executable, helper, "ros-echo", kind], "ros-echo")
         deadline = time.monotonic() + 30
         while not (port_file.exists() and "ready" in procs.log("echo")) and time.monotonic() < deadline:
             time.sleep(0.1)
@@ -208,8 +223,9 @@ def main() -> None:
         time.sleep(2.0)  # the echo agent registers; the gateway's registry cache learns it
 
         tcp = raw_tcp(args.rounds)
-        ros = raw_rclpy(args.rounds)
+        ros = raw_rclpy(args.rounds, kind)
         gw = gateway_round_trips(port, f"rt_{tag}", echo, args.rounds)
+        print(f"executor in every ROS process: {kind}\n")
         print("| round trip, 60 B payload | p50 µs | p99 µs | p50 vs raw rclpy |")
         print("|---|---:|---:|---:|")
         base = statistics.median(ros)

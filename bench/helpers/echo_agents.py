@@ -14,17 +14,25 @@ from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import String
 
 from cf_commag.client import Agent
+from cf_commag.gateway_node import make_executor
 from cf_lang.acl import AclMessage, Performative
 
 QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
 
 
-def ros_echo() -> None:
-    node = rclpy.create_node("bench_ros_echo")
-    pub = node.create_publisher(String, "/bench/pong", QOS)
-    node.create_subscription(String, "/bench/ping", pub.publish, QOS)
+def run(node, kind: str) -> None:
+    executor = make_executor(kind)
+    executor.add_node(node)
     print("ready", flush=True)
-    rclpy.spin(node)
+    while rclpy.ok():
+        executor.spin_once(timeout_sec=0.1)
+
+
+def ros_echo(kind: str) -> None:
+    node = rclpy.create_node(f"bench_ros_echo_{kind}")
+    pub = node.create_publisher(String, f"/bench/pong_{kind}", QOS)
+    node.create_subscription(String, f"/bench/ping_{kind}", pub.publish, QOS)
+    run(node, kind)
 
 
 def agent(name: str) -> None:
@@ -35,11 +43,10 @@ def agent(name: str) -> None:
         box["agent"].send(AclMessage(Performative.INFORM, receivers=(msg.sender,), content=msg.content))
 
     box["agent"] = Agent(node, name=name, service_class="Monitoring", on_message=echo, commag=sys.argv[3])
-    print("ready", flush=True)
-    rclpy.spin(node)
+    run(node, sys.argv[4])
 
 
 if __name__ == "__main__":
     rclpy.init()
     with contextlib.suppress(KeyboardInterrupt):
-        ros_echo() if sys.argv[1] == "ros-echo" else agent(sys.argv[2])
+        ros_echo(sys.argv[2]) if sys.argv[1] == "ros-echo" else agent(sys.argv[2])

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import threading
 import time
 import uuid
 from collections.abc import Callable, Iterable
@@ -80,20 +81,35 @@ class Outbox:
         self._hold = hold_seconds
         self._publishers: dict[str, object] = {}
         self._held: dict[str, list[tuple[float, str]]] = {}
+        self._matched: dict[str, object] = {}  # receivers whose inbox was seen matched: publish at once
+        self._lock = threading.Lock()  # send() may run on another thread than flush()
         self.undeliverable = 0
 
     def send(self, receiver: str, text: str) -> None:
-        pub = self._publishers.get(receiver)
-        if pub is None:
-            pub = self._publishers[receiver] = self._node.create_publisher(String, inbox_topic(receiver), INBOX_QOS)
-        held = self._held.get(receiver)
-        if held is None and pub.get_subscription_count() > 0:
+        pub = self._matched.get(receiver)
+        if pub is not None:
             pub.publish(String(data=text))
             return
-        self._held.setdefault(receiver, []).append((time.monotonic(), text))
+        with self._lock:
+            pub = self._publishers.get(receiver)
+            if pub is None:
+                pub = self._node.create_publisher(String, inbox_topic(receiver), INBOX_QOS)
+                self._publishers[receiver] = pub
+            held = self._held.get(receiver)
+            if held is None and pub.get_subscription_count() > 0:
+                self._matched[receiver] = pub
+                pub.publish(String(data=text))
+                return
+            self._held.setdefault(receiver, []).append((time.monotonic(), text))
 
     def flush(self) -> None:
         """Send held messages whose receiver is now matched; drop the ones held too long."""
+        if not self._held:
+            return
+        with self._lock:
+            self._flush_locked()
+
+    def _flush_locked(self) -> None:
         now = time.monotonic()
         for receiver, held in list(self._held.items()):
             pub = self._publishers[receiver]
@@ -101,6 +117,7 @@ class Outbox:
                 for _, text in held:
                     pub.publish(String(data=text))
                 del self._held[receiver]
+                self._matched[receiver] = pub
             elif now - held[0][0] > self._hold:
                 fresh = [(t, m) for t, m in held if now - t <= self._hold]
                 self.undeliverable += len(held) - len(fresh)

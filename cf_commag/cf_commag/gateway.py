@@ -26,6 +26,7 @@ from .records import Entry, Query, Record, Transport, valid_agent_name
 from .registry import Result
 
 PROTOCOL_VERSION = 1
+_K_SENDER = Keyword("sender")
 _DIRECTIONS = {d.name.lower(): d for d in Direction}
 _PERFORMATIVES = {p.value for p in acl.Performative}
 
@@ -266,23 +267,21 @@ class Session:
         except LanguageError as exc:
             self.send(form("not-understood", reason=str(exc)))
             return
+        perf = msg.performative.value
         if msg.sender is not None and msg.sender.name != self.name:
-            self.send(
-                form(
-                    "failure", in_reply_to=msg.performative.value, reason=f"you are {self.name}, not {msg.sender.name}"
-                )
-            )
+            self.send(form("failure", in_reply_to=perf, reason=f"you are {self.name}, not {msg.sender.name}"))
             return
         if not msg.receivers:
-            self.send(form("failure", in_reply_to=msg.performative.value, reason="no :receiver"))
+            self.send(form("failure", in_reply_to=perf, reason="no :receiver"))
             return
         unknown = [r.name for r in msg.receivers if not self.gateway.bus.known(r.name)]
         if unknown:
-            self.send(
-                form("failure", in_reply_to=msg.performative.value, reason=f"unknown receiver {', '.join(unknown)}")
-            )
+            self.send(form("failure", in_reply_to=perf, reason=f"unknown receiver {', '.join(unknown)}"))
             return
-        text = acl.to_text(msg.with_(sender=AgentId(self.name, msg.sender.addresses if msg.sender else ())))
+        if msg.sender is None:
+            # Say who sent it; the rest of the line goes on as the agent wrote it.
+            sexp = [sexp[0], _K_SENDER, AgentId(self.name).to_sexp(), *sexp[1:]]
+        text = dumps(sexp)
         for receiver in msg.receivers:
             self.gateway.bus.publish(receiver.name, text)
         self.gateway.relayed += 1

@@ -6,12 +6,13 @@ import asyncio
 import sys
 import threading
 import time
+from collections import deque
 from collections.abc import Callable
 from pathlib import Path
 
 import rclpy
 from rcl_interfaces.msg import ParameterDescriptor
-from rclpy.executors import ExternalShutdownException
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from std_msgs.msg import String
 
@@ -39,6 +40,7 @@ _PARAMS = {
     "hello_timeout": (10.0, "seconds a new connection has to say hello"),
     "commag": ("/commag", "the ComMAg's node name"),
     "port_file": ("", "if set, the bound port is written to this file"),
+    "executor": ("events", "rclpy executor: events (rclpy.experimental.EventsExecutor) or single"),
 }
 
 
@@ -68,12 +70,13 @@ class GatewayNode(Node):
         self._inboxes: dict[str, object] = {}
         self._watchers: dict[object, Callable[[str], None]] = {}
         self._renewed: dict[str, float] = {}
-        # Work the asyncio thread hands to the executor thread (entity creation is not thread-safe).
+        # Subscriptions are created and destroyed on the executor thread (not thread-safe);
+        # the asyncio thread leaves that work here. Publishing and service calls are
+        # thread-safe and happen on the asyncio thread directly, without a hop.
         self._todo: list[Callable[[], None]] = []
         self._todo_lock = threading.Lock()
-        self._wake = self.create_guard_condition(self._run_todo)
+        self.create_timer(0.02, self._run_todo)
         self.create_timer(0.1, self._renew_due)
-        self.create_timer(0.02, self._outbox.flush)
         self.loop = asyncio.new_event_loop()
         self.gateway = Gateway(self.config, self, log=self.get_logger().error)
         self._thread = threading.Thread(target=self.loop.run_forever, name="gateway-asyncio", daemon=True)
@@ -88,9 +91,11 @@ class GatewayNode(Node):
     def _on_ros(self, fn: Callable[[], None]) -> None:
         with self._todo_lock:
             self._todo.append(fn)
-        self._wake.trigger()
 
     def _run_todo(self) -> None:
+        self._outbox.flush()
+        if not self._todo:
+            return
         with self._todo_lock:
             todo, self._todo = self._todo, []
         for fn in todo:
@@ -115,16 +120,8 @@ class GatewayNode(Node):
             if not result.done():
                 result.set_result(value) if ok else result.set_exception(value)
 
-        def start() -> None:
-            if not client.service_is_ready():
-                self._to_loop(settle, False, RuntimeError("the ComMAg is not reachable"))
-                return
-            future = client.call_async(request)
-            future.add_done_callback(
-                lambda f: self._to_loop(settle, f.exception() is None, f.exception() or f.result())
-            )
-
-        self._on_ros(start)
+        future = client.call_async(request)  # rclpy clients may be called from any thread
+        future.add_done_callback(lambda f: self._to_loop(settle, f.exception() is None, f.exception() or f.result()))
         return result
 
     # ---- the Bus ------------------------------------------------------------
@@ -168,13 +165,25 @@ class GatewayNode(Node):
         return entry is not None and entry.state.value != "withdrawn"
 
     def publish(self, receiver: str, text: str) -> None:
-        self._on_ros(lambda: self._outbox.send(receiver, text))
+        self._outbox.send(receiver, text)
 
     def open_inbox(self, name: str, deliver: Callable[[str], None]) -> None:
+        # Messages cross to the asyncio thread in batches: one wake-up of the loop
+        # carries everything that arrived meanwhile.
+        pending: deque[str] = deque()
+
+        def drain() -> None:
+            while pending:
+                deliver(pending.popleft())
+
+        def on_message(msg: String) -> None:
+            was_empty = not pending
+            pending.append(msg.data)
+            if was_empty:
+                self._to_loop(drain)
+
         def create() -> None:
-            self._inboxes[name] = self.create_subscription(
-                String, inbox_topic(name), lambda m: self._to_loop(deliver, m.data), INBOX_QOS
-            )
+            self._inboxes[name] = self.create_subscription(String, inbox_topic(name), on_message, INBOX_QOS)
 
         self._on_ros(create)
 
@@ -235,16 +244,32 @@ class GatewayNode(Node):
         self._thread.join(timeout=5)
 
 
+def make_executor(kind: str):
+    """The executor a node asked for: ``events`` (faster, experimental in Jazzy) or ``single``."""
+    if kind == "events":
+        from rclpy.experimental import EventsExecutor
+
+        return EventsExecutor()
+    if kind == "single":
+        return SingleThreadedExecutor()
+    raise ValueError(f"executor must be 'events' or 'single', not {kind!r}")
+
+
 def main(args: list[str] | None = None) -> int:
     """Entry point of ``ros2 run cf_commag gateway``."""
     rclpy.init(args=args if args is not None else sys.argv)
     node = GatewayNode()
+    executor = make_executor(node.get_parameter("executor").value)
+    executor.add_node(node)
     try:
-        rclpy.spin(node)
+        # spin_once in a loop: EventsExecutor.spin() was seen to hang on shutdown.
+        while rclpy.ok():
+            executor.spin_once(timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
         node.shutdown()
+        executor.shutdown()
         node.destroy_node()
         rclpy.try_shutdown()
     return 0
