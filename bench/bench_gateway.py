@@ -128,9 +128,10 @@ def gateway_throughput(port: int, name: str, echo: str, total: int, in_flight: i
     sent = 0
     t0 = time.perf_counter()
     while received < total:
-        while sent < total and sent - received < in_flight:
-            sock.sendall(line_to(echo, sent))
-            sent += 1
+        if sent < total and sent - received < in_flight:
+            burst = min(total, received + in_flight) - sent  # pipelined: one send for the whole window
+            sock.sendall(b"".join(line_to(echo, i) for i in range(sent, sent + burst)))
+            sent += burst
         chunk = sock.recv(1 << 20)
         if not chunk:
             break

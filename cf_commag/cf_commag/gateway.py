@@ -413,14 +413,18 @@ class Gateway:
     async def _write(self, writer: asyncio.StreamWriter, queue: asyncio.Queue, state: dict) -> None:
         try:
             while True:
-                text = await queue.get()
-                if text is None:
+                batch = [await queue.get()]
+                while not queue.empty() and len(batch) < 256:  # one write call for what is waiting
+                    batch.append(queue.get_nowait())
+                end = batch.index(None) if None in batch else len(batch)
+                if end:
+                    writer.write("\n".join(batch[:end]).encode() + b"\n")
+                if end < len(batch):
                     if state["dropped"]:
                         writer.write(
                             (form("error", reason="too slow: outbound queue full, disconnecting") + "\n").encode()
                         )
                     return
-                writer.write(text.encode() + b"\n")
                 if writer.transport.get_write_buffer_size() > self.config.max_pending_bytes // 4:
                     await writer.drain()
         except (ConnectionError, RuntimeError):
