@@ -1,0 +1,141 @@
+"""What one player perceives: its view cone, noise growing with distance, in the Framework Language (ROS-free).
+
+Everything is given in the player's own frame, as the ontology defines it:
+x towards the opponents' goal, y to the left, angles in radians; teams and
+play modes relative (our/opp). For the right side the absolute frame is
+turned by 180 degrees.
+
+Seen: objects within half the view width of the head direction (rcssserver's
+normal view: 120 degrees), and anything within 3 m (felt, not seen). Noise:
+a standard deviation of ``noise`` x distance on positions (own pose: a fixed
+small one), reported as sigmas. Beyond 20 m a player's number is not read,
+beyond 40 m neither is its team (as rcssserver's see).
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+from cf_lang.ontology import (
+    AbsolutePositioning,
+    Ball,
+    Game,
+    Player,
+    PlayMode,
+    RelativePositioning,
+    Team,
+    Velocity,
+    WorldState,
+)
+
+from .world import Side, World, direction_deg, distance, norm_deg
+
+VIEW_WIDTH = 120.0
+FEEL_DISTANCE = 3.0
+NUMBER_FAR = 20.0
+TEAM_FAR = 40.0
+SELF_SIGMA = 0.2
+SELF_SIGMA_YAW = math.radians(2.0)
+
+
+def relative_mode(mode: str, side: Side) -> PlayMode:
+    """rcssserver's play mode as seen by ``side``: kick_off_l -> kick_off_our for the left side."""
+    if mode.endswith("_l") or mode.endswith("_r"):
+        base, who = mode[:-2], Side(mode[-1])
+        return PlayMode(f"{base}_{'our' if who is side else 'opp'}")
+    return PlayMode(mode)
+
+
+def to_own_frame(side: Side, x: float, y: float) -> tuple[float, float]:
+    return (x, y) if side is Side.LEFT else (-x, -y)
+
+
+def yaw_in_own_frame(side: Side, degrees: float) -> float:
+    return math.radians(norm_deg(degrees if side is Side.LEFT else degrees + 180.0))
+
+
+def observe(world: World, side: Side, number: int, rng: random.Random, *, noise: float = 0.02) -> WorldState:
+    """The world as player ``number`` of ``side`` perceives it this cycle."""
+    me = world.player(side, number)
+    head = me.head
+
+    def seen(x: float, y: float) -> tuple[bool, float, float]:
+        d = distance(me.x, me.y, x, y)
+        rel = norm_deg(direction_deg(me.x, me.y, x, y) - head)
+        return (abs(rel) <= VIEW_WIDTH / 2 or d <= FEEL_DISTANCE), d, rel
+
+    def noisy(x: float, y: float, d: float) -> tuple[float, float, float]:
+        sigma = max(0.01, noise * d)
+        nx, ny = x + rng.gauss(0.0, sigma), y + rng.gauss(0.0, sigma)
+        ox, oy = to_own_frame(side, nx, ny)
+        return _clip(ox, 70.0), _clip(oy, 50.0), sigma
+
+    sx, sy = to_own_frame(side, me.x + rng.gauss(0, SELF_SIGMA), me.y + rng.gauss(0, SELF_SIGMA))
+    vx, vy = to_own_frame(side, me.vx * 10, me.vy * 10)  # m/cycle -> m/s
+    myself = Player(
+        player_number=number,
+        which_team=Team.OUR,
+        is_goalie=me.goalie,
+        positioning=AbsolutePositioning(
+            x=_clip(sx, 70.0),
+            y=_clip(sy, 50.0),
+            yaw=yaw_in_own_frame(side, me.body + rng.gauss(0, math.degrees(SELF_SIGMA_YAW))),
+            sigma_x=SELF_SIGMA,
+            sigma_y=SELF_SIGMA,
+            sigma_yaw=SELF_SIGMA_YAW,
+        ),
+        velocity=Velocity(vx=_clip(vx, 50.0), vy=_clip(vy, 50.0)),
+        head_angle=math.radians(me.neck),
+        stamina=round(me.stamina / world.params.stamina_max, 3),
+    )
+
+    ball = None
+    b = world.ball
+    visible, d, rel = seen(b.x, b.y)
+    if visible:
+        bx, by, sigma = noisy(b.x, b.y, d)
+        bvx, bvy = to_own_frame(side, b.vx * 10, b.vy * 10)
+        ball = Ball(
+            positioning=AbsolutePositioning(x=bx, y=by, sigma_x=sigma, sigma_y=sigma),
+            relative=RelativePositioning(
+                distance=min(200.0, d), direction=math.radians(norm_deg(rel + me.neck)), sigma_distance=sigma
+            ),
+            velocity=Velocity(vx=_clip(bvx, 50.0), vy=_clip(bvy, 50.0)),
+            age=0,
+        )
+
+    others = []
+    for p in world.players.values():
+        if p is me:
+            continue
+        visible, d, rel = seen(p.x, p.y)
+        if not visible:
+            continue
+        px, py, sigma = noisy(p.x, p.y, d)
+        others.append(
+            Player(
+                player_number=p.number if d <= NUMBER_FAR else None,
+                which_team=(Team.OUR if p.side is side else Team.OPP) if d <= TEAM_FAR else None,
+                is_goalie=p.goalie if d <= NUMBER_FAR else None,
+                positioning=AbsolutePositioning(
+                    x=px, y=py, yaw=yaw_in_own_frame(side, p.body), sigma_x=sigma, sigma_y=sigma
+                ),
+                relative=RelativePositioning(
+                    distance=min(200.0, d), direction=math.radians(norm_deg(rel + me.neck)), sigma_distance=sigma
+                ),
+                age=0,
+            )
+        )
+    game = Game(
+        time=world.time,
+        play_mode=relative_mode(world.mode, side),
+        score_our=world.score[side],
+        score_opp=world.score[side.other],
+        half=world.half,
+    )
+    return WorldState(time=world.time, me=myself, ball=ball, players=tuple(others), game=game)
+
+
+def _clip(value: float, limit: float) -> float:
+    return max(-limit, min(limit, value))

@@ -1,0 +1,174 @@
+"""Body commands and the movement of ball and players, in the style of rcssserver (ROS-free).
+
+One body command per player per cycle (dash, turn, kick, catch, tackle,
+move); turn_neck may come with it. The formulas follow rcssserver's:
+kick power falls off with the angle and distance to the ball, dash
+acceleration is power x dash_power_rate capped at the maximum speed, turning
+is damped by speed (moment / (1 + inertia_moment x speed)), velocities decay
+every cycle and get a little random noise. The random generator is passed in,
+so a seed makes a match repeatable.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+
+from .world import Player, World, direction_deg, distance, norm_deg
+
+BODY_COMMANDS = ("dash", "turn", "kick", "catch", "tackle", "move")
+STOPPED_MODES = ("before_kick_off", "half_time", "time_over")
+
+
+class CommandError(ValueError):
+    """A command the server would reject (wrong form, not allowed now)."""
+
+
+def _clamp(value: float, low: float, high: float) -> float:
+    return max(low, min(high, value))
+
+
+def _cap(vx: float, vy: float, limit: float) -> tuple[float, float]:
+    speed = math.hypot(vx, vy)
+    if speed > limit:
+        return vx * limit / speed, vy * limit / speed
+    return vx, vy
+
+
+def ball_distance(world: World, p: Player) -> float:
+    return distance(p.x, p.y, world.ball.x, world.ball.y)
+
+
+def kickable(world: World, p: Player) -> bool:
+    return ball_distance(world, p) <= world.params.kickable_distance
+
+
+def dash(world: World, p: Player, power: float, direction: float = 0.0) -> None:
+    prm = world.params
+    power = _clamp(power, -100.0, 100.0)
+    cost = abs(power) * (2.0 if power < 0 else 1.0)
+    effort = 1.0 if p.stamina >= cost else 0.3  # an exhausted player barely accelerates
+    p.stamina = max(0.0, p.stamina - cost)
+    accel = power * prm.dash_power_rate * effort
+    angle = math.radians(p.body + _clamp(direction, -180.0, 180.0))
+    p.vx, p.vy = _cap(p.vx + accel * math.cos(angle), p.vy + accel * math.sin(angle), prm.player_speed_max)
+
+
+def turn(world: World, p: Player, moment: float) -> None:
+    moment = _clamp(moment, -world.params.max_moment, world.params.max_moment)
+    speed = math.hypot(p.vx, p.vy)
+    p.body = norm_deg(p.body + moment / (1.0 + world.params.inertia_moment * speed))
+
+
+def turn_neck(world: World, p: Player, angle: float) -> None:
+    limit = world.params.max_neck_angle
+    p.neck = _clamp(p.neck + angle, -limit, limit)
+
+
+def kick(world: World, p: Player, power: float, direction: float) -> bool:
+    """Kick the ball if it is kickable; return whether it was touched."""
+    prm = world.params
+    if not kickable(world, p):
+        return False
+    power = _clamp(power, 0.0, 100.0)
+    ball_dir = direction_deg(p.x, p.y, world.ball.x, world.ball.y)
+    dir_diff = abs(norm_deg(ball_dir - p.body))
+    dist_ball = max(0.0, ball_distance(world, p) - prm.player_size - prm.ball_size)
+    rate = prm.kick_power_rate * (1.0 - 0.25 * dir_diff / 180.0 - 0.25 * dist_ball / prm.kickable_margin)
+    accel = power * rate
+    angle = math.radians(p.body + _clamp(direction, -180.0, 180.0))
+    b = world.ball
+    b.vx, b.vy = _cap(b.vx + accel * math.cos(angle), b.vy + accel * math.sin(angle), prm.ball_speed_max)
+    p.kicks += 1
+    return True
+
+
+def catch(world: World, p: Player, direction: float) -> bool:
+    """A goalkeeper in its own penalty area catches a ball in reach in that direction."""
+    prm = world.params
+    if not p.goalie or not in_own_penalty_area(world, p):
+        return False
+    if ball_distance(world, p) > prm.catchable_area:
+        return False
+    ball_dir = direction_deg(p.x, p.y, world.ball.x, world.ball.y)
+    if abs(norm_deg(ball_dir - (p.body + direction))) > 45.0:
+        return False
+    world.ball.vx = world.ball.vy = 0.0
+    return True
+
+
+def tackle(world: World, p: Player, power: float) -> bool:
+    """Push the ball away in the body direction if it is close in front."""
+    prm = world.params
+    d = ball_distance(world, p)
+    ball_dir = direction_deg(p.x, p.y, world.ball.x, world.ball.y)
+    if d > prm.tackle_dist or abs(norm_deg(ball_dir - p.body)) > 60.0:
+        return False
+    speed = _clamp(power, 0.0, 100.0) * prm.kick_power_rate * 0.75
+    angle = math.radians(p.body)
+    world.ball.vx, world.ball.vy = speed * math.cos(angle), speed * math.sin(angle)
+    p.kicks += 1
+    return True
+
+
+def in_own_penalty_area(world: World, p: Player) -> bool:
+    prm = world.params
+    own_goal_x = -p.side.sign * prm.field_length / 2
+    return abs(p.x - own_goal_x) <= prm.penalty_area_length and abs(p.y) <= prm.penalty_area_width / 2
+
+
+def move_objects(world: World, rng: random.Random) -> None:
+    """Advance ball and players one cycle: position += velocity, velocity decays, with noise."""
+    prm = world.params
+    b = world.ball
+    speed = math.hypot(b.vx, b.vy)
+    if speed > 0.0:
+        noise = prm.ball_rand * speed
+        b.vx += rng.uniform(-noise, noise)
+        b.vy += rng.uniform(-noise, noise)
+    b.x += b.vx
+    b.y += b.vy
+    b.vx *= prm.ball_decay
+    b.vy *= prm.ball_decay
+    for p in world.players.values():
+        speed = math.hypot(p.vx, p.vy)
+        if speed > 0.0:
+            noise = prm.player_rand * speed
+            p.vx += rng.uniform(-noise, noise)
+            p.vy += rng.uniform(-noise, noise)
+        p.x += p.vx
+        p.y += p.vy
+        p.vx *= prm.player_decay
+        p.vy *= prm.player_decay
+        p.stamina = min(prm.stamina_max, p.stamina + prm.stamina_inc_max)
+    collide(world)
+
+
+def collide(world: World) -> None:
+    """Players and the ball cannot overlap: push them apart and damp their speed, as rcssserver does."""
+    prm = world.params
+    players = list(world.players.values())
+    limit = 2 * prm.player_size
+    for i, a in enumerate(players):
+        for b in players[i + 1 :]:
+            d = distance(a.x, a.y, b.x, b.y)
+            if d < limit:
+                if d < 1e-6:
+                    dx, dy, d = 1.0, 0.0, 1.0
+                else:
+                    dx, dy = (b.x - a.x) / d, (b.y - a.y) / d
+                push = (limit - d) / 2
+                a.x, a.y = a.x - dx * push, a.y - dy * push
+                b.x, b.y = b.x + dx * push, b.y + dy * push
+                a.vx, a.vy, b.vx, b.vy = -0.1 * a.vx, -0.1 * a.vy, -0.1 * b.vx, -0.1 * b.vy
+    ball = world.ball
+    limit = prm.player_size + prm.ball_size
+    for p in players:
+        d = ball_distance(world, p)
+        if d < limit:
+            if d < 1e-6:
+                dx, dy, d = 1.0, 0.0, 1.0
+            else:
+                dx, dy = (ball.x - p.x) / d, (ball.y - p.y) / d
+            ball.x, ball.y = p.x + dx * limit, p.y + dy * limit
+            ball.vx, ball.vy = -0.1 * ball.vx, -0.1 * ball.vy

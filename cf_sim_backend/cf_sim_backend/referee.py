@@ -1,0 +1,125 @@
+"""The referee: kick-off, goals, ball out of play, offside, half and full time (ROS-free).
+
+Play modes use rcssserver's names with the side that has the ball:
+before_kick_off, kick_off_l/r, play_on, kick_in_l/r, corner_kick_l/r,
+goal_kick_l/r, free_kick_l/r (after offside or a goalkeeper's catch),
+goal_l/r (the side that scored), half_time, time_over. In a set piece the ball
+lies still until the side that has it kicks; opponents are kept 9.15 m away.
+"""
+
+from __future__ import annotations
+
+from .world import Side, World, kick_off_position
+
+SET_PIECES = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick")
+
+
+def set_mode(world: World, mode: str) -> None:
+    if world.mode != mode:
+        world.mode = mode
+        world.mode_since = world.time
+
+
+def set_piece_side(world: World) -> Side | None:
+    """The side that may play the ball in the current set piece, or None."""
+    for piece in SET_PIECES:
+        if world.mode.startswith(piece + "_"):
+            return Side(world.mode[-1])
+    return None
+
+
+def place_for_kick_off(world: World, side: Side) -> None:
+    world.ball.x = world.ball.y = world.ball.vx = world.ball.vy = 0.0
+    for p in world.players.values():
+        p.x, p.y = kick_off_position(p.side, p.number, taker=p.side is side)
+        p.vx = p.vy = 0.0
+        p.body = 0.0 if p.side is Side.LEFT else 180.0
+        p.neck = 0.0
+    world.kick_off_side = side
+    world.last_touch = None
+
+
+def start_set_piece(world: World, piece: str, side: Side, x: float, y: float) -> None:
+    b = world.ball
+    b.x, b.y, b.vx, b.vy = x, y, 0.0, 0.0
+    world.last_touch = None
+    set_mode(world, f"{piece}_{side.value}")
+
+
+def keep_opponents_away(world: World) -> None:
+    side = set_piece_side(world)
+    if side is None:
+        return
+    b = world.ball
+    radius = world.params.kick_off_clearance
+    for p in world.players.values():
+        if p.side is side:
+            continue
+        dx, dy = p.x - b.x, p.y - b.y
+        d = (dx * dx + dy * dy) ** 0.5
+        if d < radius:
+            if d < 1e-6:
+                dx, dy, d = -side.sign, 0.0, 1.0
+            p.x, p.y = b.x + dx / d * radius, b.y + dy / d * radius
+
+
+def offside_players(world: World, kicker_side: Side, kicker_number: int) -> set[int]:
+    """Team-mates of the kicker in an offside position at the moment of the kick."""
+    sign = kicker_side.sign
+    opponents = sorted((p.x * sign for p in world.players.values() if p.side is not kicker_side), reverse=True)
+    second_last = opponents[1] if len(opponents) >= 2 else 0.0
+    ball_x = world.ball.x * sign
+    line = max(second_last, ball_x, 0.0)
+    return {
+        p.number
+        for p in world.players.values()
+        if p.side is kicker_side and p.number != kicker_number and p.x * sign > line + 1e-9
+    }
+
+
+def check_ball(world: World) -> str | None:
+    """After the ball moved in play_on: goal or out of play. Returns an event, if any."""
+    prm = world.params
+    b = world.ball
+    half_length, half_width = prm.field_length / 2, prm.field_width / 2
+    if abs(b.x) > half_length:
+        goal_side = Side.RIGHT if b.x > 0 else Side.LEFT  # whose goal line it crossed
+        attacker = goal_side.other
+        if abs(b.y) < prm.goal_width / 2:
+            world.score[attacker] += 1
+            set_mode(world, f"goal_{attacker.value}")
+            b.vx = b.vy = 0.0
+            return f"goal {attacker.value}"
+        toucher = world.last_touch[0] if world.last_touch else attacker
+        if toucher is goal_side:  # the defenders put it out: corner
+            y = half_width - 0.5 if b.y > 0 else -(half_width - 0.5)
+            start_set_piece(world, "corner_kick", attacker, (half_length - 0.5) * (1 if b.x > 0 else -1), y)
+            return f"corner {attacker.value}"
+        x = (half_length - 5.5) * (1 if b.x > 0 else -1)
+        start_set_piece(world, "goal_kick", goal_side, x, 0.0)
+        return f"goal kick {goal_side.value}"
+    if abs(b.y) > half_width:
+        toucher = world.last_touch[0] if world.last_touch else Side.LEFT
+        y = half_width if b.y > 0 else -half_width
+        start_set_piece(world, "kick_in", toucher.other, max(-half_length, min(half_length, b.x)), y)
+        return f"kick in {toucher.other.value}"
+    return None
+
+
+def advance_clock(world: World) -> str | None:
+    """Count the cycle; end halves and the match. Returns an event, if any."""
+    prm = world.params
+    if world.mode in ("before_kick_off", "half_time", "time_over"):
+        return None
+    world.time += 1
+    if world.time >= prm.half_cycles * world.half:
+        if world.half >= prm.halves:
+            set_mode(world, "time_over")
+            return "time over"
+        world.half += 1
+        second = world.kick_off_side.other
+        place_for_kick_off(world, second)
+        set_mode(world, "half_time")
+        world.kick_off_side = second
+        return "half time"
+    return None

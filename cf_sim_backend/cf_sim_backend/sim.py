@@ -1,0 +1,220 @@
+"""The embedded 2D soccer simulator: commands in, one cycle at a time, deterministic for a seed (ROS-free)."""
+
+from __future__ import annotations
+
+import random
+
+from . import physics, referee
+from .physics import CommandError
+from .world import Ball, Params, Player, Side, World, direction_deg
+
+_ARITY = {
+    "dash": (1, 2),
+    "turn": (1, 1),
+    "kick": (2, 2),
+    "catch": (1, 1),
+    "tackle": (1, 1),
+    "move": (2, 2),
+    "turn_neck": (1, 1),
+}
+
+
+class Simulator:
+    """A match: 1..11 players a side, rcssserver-like physics and referee.
+
+    ``command(side, number, name, *args)`` queues a command for the coming
+    cycle (one body command per player per cycle, plus ``turn_neck``);
+    ``step()`` plays the cycle and returns what the referee saw.
+    """
+
+    def __init__(
+        self,
+        params: Params | None = None,
+        *,
+        team_sizes: tuple[int, int] = (11, 11),
+        team_names: tuple[str, str] = ("left", "right"),
+        seed: int = 0,
+    ):
+        self.world = World(params=params or Params())
+        self.world.team_names = {Side.LEFT: team_names[0], Side.RIGHT: team_names[1]}
+        for side, size in zip((Side.LEFT, Side.RIGHT), team_sizes, strict=True):
+            if not 0 <= size <= 11:
+                raise ValueError("team sizes must be 0..11")
+            for n in range(1, size + 1):
+                self.world.players[(side, n)] = Player(
+                    side=side, number=n, goalie=(n == 1), stamina=self.world.params.stamina_max
+                )
+        referee.place_for_kick_off(self.world, Side.LEFT)
+        self.rng = random.Random(seed)
+        self._body: dict[tuple[Side, int], tuple[str, tuple[float, ...]]] = {}
+        self._neck: dict[tuple[Side, int], float] = {}
+        self._offside: dict[Side, set[int]] = {Side.LEFT: set(), Side.RIGHT: set()}
+        self._stopped = 0
+        self.stats = {
+            "kicks": {Side.LEFT: 0, Side.RIGHT: 0},
+            "possession": {Side.LEFT: 0, Side.RIGHT: 0},
+            "shots": {Side.LEFT: 0, Side.RIGHT: 0},
+        }
+
+    @property
+    def finished(self) -> bool:
+        return self.world.mode == "time_over"
+
+    def command(self, side: Side, number: int, name: str, *args: float) -> None:
+        """Queue a command for the next cycle; raise CommandError if the server would refuse it."""
+        key = (Side(side), int(number))
+        if key not in self.world.players:
+            raise CommandError(f"no player {key[0].value} {key[1]}")
+        if name not in _ARITY:
+            raise CommandError(f"unknown command {name!r}")
+        low, high = _ARITY[name]
+        if not low <= len(args) <= high:
+            raise CommandError(f"{name} takes {low}..{high} arguments")
+        try:
+            values = tuple(float(a) for a in args)
+        except (TypeError, ValueError):
+            raise CommandError(f"{name}: arguments must be numbers") from None
+        if name == "turn_neck":
+            self._neck[key] = values[0]
+        elif key in self._body:
+            raise CommandError("one body command per cycle")
+        else:
+            self._body[key] = (name, values)
+
+    def step(self) -> list[str]:
+        """Play one cycle."""
+        w = self.world
+        events: list[str] = []
+        if w.mode == "time_over":
+            return events
+        body, self._body = self._body, {}
+        neck, self._neck = self._neck, {}
+        if w.mode in ("before_kick_off", "half_time"):
+            self._moves_only(body)
+            self._stopped += 1
+            if self._stopped >= w.params.auto_kick_off_cycles:
+                self._stopped = 0
+                referee.set_mode(w, f"kick_off_{w.kick_off_side.value}")
+                events.append(f"kick off {w.kick_off_side.value}")
+            return events
+        if w.mode.startswith("goal_"):
+            if w.time - w.mode_since >= w.params.goal_pause_cycles:
+                conceding = Side(w.mode[-1]).other
+                referee.place_for_kick_off(w, conceding)
+                referee.set_mode(w, f"kick_off_{conceding.value}")
+                events.append(f"kick off {conceding.value}")
+            else:
+                self._moves_only(body)
+            referee.advance_clock(w)
+            return events
+        for key, angle in neck.items():
+            physics.turn_neck(w, w.players[key], angle)
+        keys = list(body)
+        self.rng.shuffle(keys)  # no side gets to kick first by its number
+        for key in keys:
+            name, args = body[key]
+            event = self._apply(w.players[key], name, args)
+            if event:
+                events.append(event)
+        held = referee.set_piece_side(w) is not None
+        if held:
+            w.ball.vx = w.ball.vy = 0.0  # the ball lies still until the side that has it kicks
+        physics.move_objects(w, self.rng)
+        if w.mode == "play_on":
+            event = referee.check_ball(w)
+            if event:
+                events.append(event)
+        referee.keep_opponents_away(w)
+        if referee.set_piece_side(w) is not None and w.time - w.mode_since > w.params.set_piece_timeout:
+            referee.set_mode(w, "play_on")  # nobody took it: drop ball
+            events.append("drop ball")
+        if w.last_touch is not None and w.mode == "play_on":
+            self.stats["possession"][w.last_touch[0]] += 1
+        event = referee.advance_clock(w)
+        if event:
+            events.append(event)
+        return events
+
+    def _moves_only(self, body: dict) -> None:
+        for key, (name, args) in body.items():
+            if name == "move":
+                self._move(self.world.players[key], *args)
+
+    def _move(self, p: Player, x: float, y: float) -> None:
+        """Place a player in its own half (x given for the left side, as rcssserver's move)."""
+        half = self.world.params
+        x = max(-half.field_length / 2, min(-0.5, x)) * p.side.sign
+        y = max(-half.field_width / 2, min(half.field_width / 2, y)) * p.side.sign
+        p.x, p.y, p.vx, p.vy = x, y, 0.0, 0.0
+
+    def _apply(self, p: Player, name: str, args: tuple[float, ...]) -> str | None:
+        w = self.world
+        if name == "dash":
+            physics.dash(w, p, *args)
+        elif name == "turn":
+            physics.turn(w, p, args[0])
+        elif name == "move":
+            if w.mode.startswith("kick_off_") or w.mode.startswith("goal_"):
+                self._move(p, *args)
+        elif name in ("kick", "tackle"):
+            return self._touch(p, name, args)
+        elif name == "catch" and w.mode == "play_on" and physics.catch(w, p, args[0]):
+            w.last_touch = p.key
+            referee.start_set_piece(w, "free_kick", p.side, w.ball.x, w.ball.y)
+            return f"catch {p.side.value} {p.number}"
+        return None
+
+    def _touch(self, p: Player, name: str, args: tuple[float, ...]) -> str | None:
+        w = self.world
+        piece_side = referee.set_piece_side(w)
+        if piece_side is not None and piece_side is not p.side:
+            return None  # opponents may not play the ball in a set piece
+        if p.number in self._offside[p.side] and physics.kickable(w, p):
+            self._offside = {Side.LEFT: set(), Side.RIGHT: set()}
+            referee.start_set_piece(w, "free_kick", p.side.other, p.x, p.y)
+            return f"offside {p.side.value} {p.number}"
+        touched = physics.kick(w, p, *args) if name == "kick" else physics.tackle(w, p, args[0])
+        if not touched:
+            return None
+        w.last_touch = p.key
+        self.stats["kicks"][p.side] += 1
+        goal_x = p.side.sign * w.params.field_length / 2
+        aim = direction_deg(w.ball.x, w.ball.y, goal_x, 0.0)
+        moving = direction_deg(0.0, 0.0, w.ball.vx, w.ball.vy)
+        if (
+            abs(w.ball.x - goal_x) < 30.0
+            and abs((aim - moving + 180) % 360 - 180) < 15
+            and (w.ball.vx**2 + w.ball.vy**2) > 2.0
+        ):
+            self.stats["shots"][p.side] += 1
+        self._offside[p.side] = referee.offside_players(w, p.side, p.number)
+        self._offside[p.side.other] = set()
+        if piece_side is not None:
+            referee.set_mode(w, "play_on")
+        return None
+
+    def snapshot(self) -> dict:
+        """The true state of this cycle as plain data (the match log's and the state topic's format)."""
+        w = self.world
+        b: Ball = w.ball
+        return {
+            "t": w.time,
+            "mode": w.mode,
+            "score": [w.score[Side.LEFT], w.score[Side.RIGHT]],
+            "ball": [round(b.x, 3), round(b.y, 3), round(b.vx, 3), round(b.vy, 3)],
+            "players": [
+                [
+                    p.side.value,
+                    p.number,
+                    round(p.x, 3),
+                    round(p.y, 3),
+                    round(p.vx, 3),
+                    round(p.vy, 3),
+                    round(p.body, 2),
+                    round(p.neck, 2),
+                    round(p.stamina),
+                    int(p.goalie),
+                ]
+                for p in w.players.values()
+            ],
+        }

@@ -1,0 +1,155 @@
+"""The simulated world's state and parameters (ROS-free), in the style of rcssserver.
+
+Units: metres, metres per cycle, degrees for bodies and heads (as rcssserver),
+cycles of 100 ms. The frame is absolute: the left team attacks towards +x,
+the right team towards -x; origin at the centre spot, y to the left.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from enum import StrEnum
+
+
+class Side(StrEnum):
+    LEFT = "l"
+    RIGHT = "r"
+
+    @property
+    def other(self) -> Side:
+        return Side.RIGHT if self is Side.LEFT else Side.LEFT
+
+    @property
+    def sign(self) -> int:
+        """+1 if this side attacks towards +x."""
+        return 1 if self is Side.LEFT else -1
+
+
+@dataclass(frozen=True)
+class Params:
+    """rcssserver's defaults where it has one."""
+
+    field_length: float = 105.0
+    field_width: float = 68.0
+    goal_width: float = 14.02
+    penalty_area_length: float = 16.5
+    penalty_area_width: float = 40.32
+    ball_size: float = 0.085
+    ball_decay: float = 0.94
+    ball_speed_max: float = 3.0
+    ball_rand: float = 0.05
+    player_size: float = 0.3
+    player_decay: float = 0.4
+    player_speed_max: float = 1.05
+    player_rand: float = 0.1
+    dash_power_rate: float = 0.006
+    kick_power_rate: float = 0.027
+    kickable_margin: float = 0.7
+    inertia_moment: float = 5.0
+    max_moment: float = 180.0
+    max_neck_angle: float = 90.0
+    stamina_max: float = 8000.0
+    stamina_inc_max: float = 45.0
+    catchable_area: float = 1.3
+    tackle_dist: float = 2.0
+    kick_off_clearance: float = 9.15
+    half_cycles: int = 3000
+    halves: int = 2
+    goal_pause_cycles: int = 20
+    auto_kick_off_cycles: int = 50
+    set_piece_timeout: int = 100
+
+    @property
+    def kickable_distance(self) -> float:
+        return self.player_size + self.ball_size + self.kickable_margin
+
+
+@dataclass
+class Ball:
+    x: float = 0.0
+    y: float = 0.0
+    vx: float = 0.0
+    vy: float = 0.0
+
+
+@dataclass
+class Player:
+    side: Side
+    number: int
+    x: float = 0.0
+    y: float = 0.0
+    vx: float = 0.0
+    vy: float = 0.0
+    body: float = 0.0  # degrees, absolute, counter-clockwise from +x
+    neck: float = 0.0  # degrees, relative to body
+    stamina: float = 8000.0
+    goalie: bool = False
+    kicks: int = 0  # kicks that reached the ball
+
+    @property
+    def key(self) -> tuple[Side, int]:
+        return (self.side, self.number)
+
+    @property
+    def head(self) -> float:
+        return norm_deg(self.body + self.neck)
+
+
+@dataclass
+class World:
+    params: Params = field(default_factory=Params)
+    time: int = 0
+    mode: str = "before_kick_off"  # rcssserver play mode names, with _l/_r
+    score: dict[Side, int] = field(default_factory=lambda: {Side.LEFT: 0, Side.RIGHT: 0})
+    ball: Ball = field(default_factory=Ball)
+    players: dict[tuple[Side, int], Player] = field(default_factory=dict)
+    team_names: dict[Side, str] = field(default_factory=lambda: {Side.LEFT: "left", Side.RIGHT: "right"})
+    half: int = 1
+    last_touch: tuple[Side, int] | None = None
+    mode_since: int = 0
+    kick_off_side: Side = Side.LEFT
+
+    def player(self, side: Side, number: int) -> Player:
+        return self.players[(side, number)]
+
+
+def norm_deg(angle: float) -> float:
+    """An angle in degrees in (-180, 180]."""
+    angle = math.fmod(angle, 360.0)
+    if angle > 180.0:
+        angle -= 360.0
+    elif angle <= -180.0:
+        angle += 360.0
+    return angle
+
+
+def distance(ax: float, ay: float, bx: float, by: float) -> float:
+    return math.hypot(bx - ax, by - ay)
+
+
+def direction_deg(ax: float, ay: float, bx: float, by: float) -> float:
+    return math.degrees(math.atan2(by - ay, bx - ax))
+
+
+# The positions a side takes before a kick-off (its own half, x as for the left side).
+KICK_OFF_FORMATION: dict[int, tuple[float, float]] = {
+    1: (-50.0, 0.0),
+    2: (-36.0, 15.0),
+    3: (-38.0, 5.0),
+    4: (-38.0, -5.0),
+    5: (-36.0, -15.0),
+    6: (-22.0, 18.0),
+    7: (-24.0, 0.0),
+    8: (-22.0, -18.0),
+    9: (-10.0, 12.0),
+    10: (-1.0, 0.0),
+    11: (-10.0, -12.0),
+}
+
+
+def kick_off_position(side: Side, number: int, taker: bool) -> tuple[float, float]:
+    x, y = KICK_OFF_FORMATION.get(number, (-20.0, 0.0))
+    if number == 10 and not taker:
+        x = -9.5  # outside the centre circle
+    return (x * side.sign, y * side.sign)

@@ -1,0 +1,228 @@
+"""The simulator core: physics, referee, perception, determinism. No ROS."""
+
+from __future__ import annotations
+
+import math
+import random
+
+import pytest
+
+from cf_lang import unparse
+from cf_lang.ontology import PlayMode, Team
+from cf_sim_backend import physics, referee
+from cf_sim_backend.chaser import chase_commands
+from cf_sim_backend.perception import observe
+from cf_sim_backend.physics import CommandError
+from cf_sim_backend.sim import Simulator
+from cf_sim_backend.world import Params, Side
+
+QUIET = Params(ball_rand=0.0, player_rand=0.0, auto_kick_off_cycles=1)
+
+
+def sim_with(*players, **kw):
+    """A simulator with only the given players, e.g. ((Side.LEFT, 1, x, y, body), ...)."""
+    sizes = (
+        max([n for s, n, *_ in players if s is Side.LEFT] or [0]),
+        max([n for s, n, *_ in players if s is Side.RIGHT] or [0]),
+    )
+    sim = Simulator(kw.pop("params", QUIET), team_sizes=sizes, seed=1)
+    for side, n, x, y, body in players:
+        p = sim.world.player(side, n)
+        p.x, p.y, p.body = x, y, body
+    for p in list(sim.world.players.values()):
+        if (p.side, p.number) not in {(s, n) for s, n, *_ in players}:
+            del sim.world.players[p.key]
+    sim.world.mode = "play_on"
+    return sim
+
+
+def test_kick_power_direction_and_kickable_distance():
+    sim = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0))
+    w = sim.world
+    w.ball.x, w.ball.y = 0.7, 0.0  # straight ahead, within 1.085
+    assert physics.kickable(w, w.player(Side.LEFT, 2))
+    sim.command(Side.LEFT, 2, "kick", 100, 90)
+    sim.step()
+    # Full power straight ahead at 0.7 m: 100 * 0.027 * (1 - 0.25 * (0.7-0.385)/0.7) = 2.396 m/cycle, sideways (90 deg).
+    assert w.ball.vy / w.params.ball_decay == pytest.approx(100 * 0.027 * (1 - 0.25 * 0.315 / 0.7), rel=1e-3)
+    assert abs(w.ball.vx) < 1e-9
+    w.ball.x, w.ball.y, w.ball.vx, w.ball.vy = 1.2, 0.0, 0.0, 0.0  # out of reach
+    sim.command(Side.LEFT, 2, "kick", 100, 0)
+    sim.step()
+    assert w.ball.vx == 0.0 and w.player(Side.LEFT, 2).kicks == 1
+
+
+def test_dash_speed_cap_decay_and_turn_inertia():
+    sim = sim_with((Side.LEFT, 3, 0.0, 0.0, 0.0))
+    p = sim.world.player(Side.LEFT, 3)
+    sim.command(Side.LEFT, 3, "dash", 100)
+    sim.step()
+    assert p.x == pytest.approx(0.6) and p.vx == pytest.approx(0.6 * 0.4)
+    for _ in range(30):
+        sim.command(Side.LEFT, 3, "dash", 100)
+        sim.step()
+    assert math.hypot(p.vx, p.vy) <= 1.05 * 0.4 + 1e-9  # capped before decay
+    speed = math.hypot(p.vx, p.vy)
+    sim.command(Side.LEFT, 3, "turn", 90)
+    sim.step()
+    assert p.body == pytest.approx(90 / (1 + 5 * speed))
+
+
+def test_ball_decays():
+    sim = sim_with((Side.LEFT, 1, -40.0, 0.0, 0.0))
+    b = sim.world.ball
+    b.vx = 2.0
+    sim.step()
+    sim.step()
+    assert b.x == pytest.approx(2.0 + 2.0 * 0.94) and b.vx == pytest.approx(2.0 * 0.94**2)
+
+
+def test_collisions_push_players_apart():
+    sim = sim_with((Side.LEFT, 1, 0.0, 0.0, 0.0), (Side.RIGHT, 1, 0.2, 0.0, 180.0))
+    sim.step()
+    a, b = sim.world.player(Side.LEFT, 1), sim.world.player(Side.RIGHT, 1)
+    assert math.hypot(a.x - b.x, a.y - b.y) >= 0.6 - 1e-9
+
+
+def test_one_body_command_per_cycle_and_bad_commands():
+    sim = sim_with((Side.LEFT, 1, 0.0, 0.0, 0.0))
+    sim.command(Side.LEFT, 1, "dash", 50)
+    with pytest.raises(CommandError, match="one body command"):
+        sim.command(Side.LEFT, 1, "turn", 10)
+    sim.command(Side.LEFT, 1, "turn_neck", 30)  # not a body command
+    for bad in [("fly",), ("dash",), ("kick", 1), ("dash", "x")]:
+        with pytest.raises(CommandError):
+            sim.command(Side.LEFT, 1, *bad)
+    with pytest.raises(CommandError, match="no player"):
+        sim.command(Side.RIGHT, 5, "dash", 10)
+
+
+def test_goal_and_restart_with_kick_off_for_the_conceding_side():
+    sim = sim_with((Side.LEFT, 9, 48.0, 0.0, 0.0), (Side.RIGHT, 1, 30.0, 20.0, 180.0))
+    w = sim.world
+    w.ball.x, w.ball.y = 48.6, 0.0
+    sim.command(Side.LEFT, 9, "kick", 100, 0)
+    events = []
+    for _ in range(10):
+        events += sim.step()
+    assert "goal l" in events and w.score[Side.LEFT] == 1 and w.mode == "goal_l"
+    for _ in range(30):
+        events += sim.step()
+    assert "kick off r" in events and w.mode == "kick_off_r" and (w.ball.x, w.ball.y) == (0.0, 0.0)
+
+
+def test_ball_out_gives_kick_in_corner_or_goal_kick():
+    sim = sim_with((Side.LEFT, 2, 0.0, 33.0, 90.0), (Side.RIGHT, 2, -30.0, 0.0, 0.0))
+    w = sim.world
+    w.ball.x, w.ball.y = 0.0, 33.6
+    sim.command(Side.LEFT, 2, "kick", 60, 0)
+    events = []
+    for _ in range(5):
+        events += sim.step()
+    assert "kick in r" in events and w.mode == "kick_in_r" and abs(w.ball.y) == 34.0
+
+    sim = sim_with((Side.LEFT, 2, 50.0, 10.0, 0.0), (Side.RIGHT, 2, 0.0, 0.0, 0.0))
+    sim.world.ball.x, sim.world.ball.y = 50.6, 10.0
+    sim.command(Side.LEFT, 2, "kick", 60, 0)
+    events = [e for _ in range(5) for e in sim.step()]
+    assert "goal kick r" in events and sim.world.ball.x == pytest.approx(47.0)
+
+    sim = sim_with((Side.RIGHT, 2, 50.0, 10.0, 0.0), (Side.LEFT, 2, 0.0, 0.0, 0.0))
+    sim.world.ball.x, sim.world.ball.y = 50.6, 10.0
+    sim.command(Side.RIGHT, 2, "kick", 60, 0)  # the defenders put it over their own line
+    events = [e for _ in range(5) for e in sim.step()]
+    assert "corner l" in events and sim.world.mode == "corner_kick_l"
+
+
+def test_offside():
+    # Left 10 passes; left 9 stands beyond the second-last defender: offside when he plays the ball.
+    sim = sim_with(
+        (Side.LEFT, 10, 0.0, 0.0, 0.0),
+        (Side.LEFT, 9, 30.0, 0.0, 180.0),
+        (Side.RIGHT, 1, 50.0, 0.0, 180.0),
+        (Side.RIGHT, 4, 20.0, 5.0, 180.0),
+    )
+    w = sim.world
+    w.ball.x, w.ball.y = 0.6, 0.0
+    sim.command(Side.LEFT, 10, "kick", 100, 0)
+    sim.step()
+    events = []
+    for _ in range(40):
+        p = w.player(Side.LEFT, 9)
+        if physics.kickable(w, p):
+            sim.command(Side.LEFT, 9, "kick", 50, 0)
+        events += sim.step()
+        if any(e.startswith("offside") for e in events):
+            break
+    assert "offside l 9" in events and w.mode == "free_kick_r"
+
+
+def test_set_piece_keeps_opponents_away_and_only_the_side_may_kick():
+    sim = sim_with((Side.LEFT, 7, -0.5, 0.0, 0.0), (Side.RIGHT, 9, 1.0, 0.0, 180.0))
+    w = sim.world
+    referee.set_mode(w, "kick_off_l")
+    sim.command(Side.RIGHT, 9, "kick", 100, 0)
+    sim.step()
+    assert w.ball.vx == 0.0 and w.mode == "kick_off_l"
+    assert math.hypot(w.player(Side.RIGHT, 9).x, w.player(Side.RIGHT, 9).y) >= 9.15 - 1e-9
+    sim.command(Side.LEFT, 7, "kick", 50, 0)
+    sim.step()
+    assert w.mode == "play_on" and w.ball.x > 0
+
+
+def test_half_time_and_full_time():
+    sim = Simulator(Params(half_cycles=30, auto_kick_off_cycles=2), team_sizes=(2, 2), seed=3)
+    events = []
+    while not sim.finished:
+        events += sim.step()
+    assert events.count("half time") == 1 and events[-1] == "time over" and sim.world.time == 60
+    assert "kick off r" in events  # the second half starts with the other side
+
+
+def test_same_seed_same_match_different_seed_different_match():
+    def play(seed):
+        sim = Simulator(Params(half_cycles=300, auto_kick_off_cycles=2), team_sizes=(5, 5), seed=seed)
+        while not sim.finished:
+            chase_commands(sim, Side.LEFT)
+            chase_commands(sim, Side.RIGHT)
+            sim.step()
+        return sim.snapshot()
+
+    assert play(7) == play(7)
+    assert play(7) != play(8)
+
+
+def test_perception_view_cone_noise_and_own_frame():
+    sim = sim_with((Side.RIGHT, 5, 10.0, 0.0, 180.0), (Side.LEFT, 3, 0.0, 0.0, 0.0), (Side.LEFT, 8, 40.0, 0.0, 0.0))
+    w = sim.world
+    w.ball.x, w.ball.y = 5.0, 0.0  # in front of the right player (who looks towards -x)
+    state = observe(w, Side.RIGHT, 5, random.Random(1), noise=0.0)
+    # In the right player's own frame, the field is turned: it stands at x = -10 facing +x.
+    assert state.me.positioning.x == pytest.approx(-10.0, abs=1.0)
+    assert abs(state.me.positioning.yaw) < 0.1
+    assert state.ball.positioning.x == pytest.approx(-5.0, abs=0.05)
+    numbers = {(p.which_team, p.player_number) for p in state.players}
+    assert (Team.OPP, 3) in numbers and all(n != 8 for _, n in numbers)  # 8 is behind it: unseen
+    assert state.game.play_mode is PlayMode.PLAY_ON
+    # Noise grows with distance and is reported as a sigma.
+    noisy = observe(w, Side.RIGHT, 5, random.Random(1), noise=0.05)
+    far = next(p for p in noisy.players if p.player_number == 3)
+    assert far.positioning.sigma_x == pytest.approx(0.05 * 10.0)
+    assert unparse(state).startswith("(WorldState :time")
+
+
+def test_far_players_lose_their_number():
+    sim = sim_with((Side.LEFT, 1, -30.0, 0.0, 0.0), (Side.RIGHT, 4, 0.0, 0.0, 180.0))
+    state = observe(sim.world, Side.LEFT, 1, random.Random(0), noise=0.0)
+    assert state.players[0].player_number is None and state.players[0].which_team is Team.OPP
+
+
+def test_a_chaser_match_is_played_out():
+    sim = Simulator(Params(half_cycles=600, auto_kick_off_cycles=2), team_sizes=(11, 11), seed=2)
+    events = []
+    while not sim.finished:
+        chase_commands(sim, Side.LEFT)
+        chase_commands(sim, Side.RIGHT)
+        events += sim.step()
+    assert sim.world.time == 1200
+    assert sum(sim.stats["kicks"].values()) > 50
