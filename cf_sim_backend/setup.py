@@ -23,5 +23,11 @@ setup(
     maintainer_email="maintainers@commonframework.org",
     description="The embedded 2D soccer simulator and each player's perception and action components.",
     license="Apache-2.0",
-    entry_points={"console_scripts": []},
+    entry_points={
+        "console_scripts": [
+            "sim = cf_sim_backend.sim_node:main",
+            "perception = cf_sim_backend.perception_node:main",
+            "action = cf_sim_backend.action_node:main",
+        ]
+    },
 )

@@ -198,6 +198,9 @@ class Responder:
     def failure(self, reason: str) -> None:
         self._send(Performative.FAILURE, _reason(self.request, reason))
 
+    def not_understood(self, reason: str) -> None:
+        self._send(Performative.NOT_UNDERSTOOD, _reason(self.request, reason))
+
 
 def _reason(request: AclMessage, reason: str) -> str:
     """Content of refuse/failure, as FIPA has it: the action refused and why, ``("<content>" "<reason>")``."""
@@ -447,7 +450,8 @@ class Agent:
 
         The handler gets the opening message and a :class:`Responder`. It may
         answer through the responder (now or later), or return a content string
-        (sent as inform), or raise Refuse/Failure.
+        (sent as inform), or raise Refuse/Failure; a LanguageError (content
+        that does not parse or validate) is answered not-understood.
         """
         if protocol not in protocols.PROTOCOLS:
             raise ValueError(f"unknown protocol {protocol!r}")
@@ -530,7 +534,11 @@ class Agent:
             if responder.open:
                 responder.refuse(str(exc))
             return
-        except (Failure, LanguageError) as exc:
+        except LanguageError as exc:  # the content does not parse or names nothing we know
+            if responder.open:
+                responder.not_understood(str(exc))
+            return
+        except Failure as exc:
             if responder.open:
                 responder.failure(str(exc))
             return

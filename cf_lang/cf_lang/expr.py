@@ -74,7 +74,8 @@ def unparse(expr: Expression) -> str:
 
 def to_sexp(expr: Expression) -> list:
     if isinstance(expr, Val):
-        return [VAL, Symbol(expr.cls), Symbol(expr.attribute), *_pairs(expr.key)]
+        attribute = [Symbol(expr.attribute)] if expr.attribute else []
+        return [VAL, Symbol(expr.cls), *attribute, *_pairs(expr.key)]
     if isinstance(expr, Exec):
         body = encode_instance(expr.action)[1:]
         return [EXEC, Symbol(expr.cls), Symbol(expr.method), *_pairs(expr.key), *body]
@@ -219,8 +220,14 @@ def _canonical(cls: type[Concept], name: str) -> str | None:
 
 
 def _check_class(sexp: list, form: str, problems: list) -> type[Concept] | None:
-    if len(sexp) < 3 or type(sexp[1]) is not Symbol or type(sexp[2]) is not Symbol:
-        problems.append(("", f"expected ({form} Class name :key value ...), found {_show(sexp)}"))
+    needs_name = form == "exec"
+    if (
+        len(sexp) < (3 if needs_name else 2)
+        or type(sexp[1]) is not Symbol
+        or (needs_name and type(sexp[2]) is not Symbol)
+    ):
+        shape = "(exec Class method :key value ...)" if needs_name else "(val Class [attribute] :key value ...)"
+        problems.append(("", f"expected {shape}, found {_show(sexp)}"))
         return None
     cls = CLASSES.get(sexp[1])
     if cls is None:
@@ -253,16 +260,21 @@ def _split_key(cls: type[Concept], attrs: dict, where: str, problems: list) -> t
 
 
 def _parse_val(sexp: list) -> Val:
+    """``(val Class attribute :key v ...)``; without an attribute it names the whole instance."""
     problems: list[tuple[str, str]] = []
     cls = _check_class(sexp, "val", problems)
     if cls is None:
         raise ExpressionError(problems)
-    name, attribute = str(sexp[1]), str(sexp[2])
-    where = f"{name}.{attribute}"
-    canon_attr = _canonical(cls, attribute)
-    if canon_attr is None:
-        problems.append((where, f"{name} has no attribute {attribute}"))
-    attrs = _read_pairs(sexp[3:], where, problems) or {}
+    name = str(sexp[1])
+    has_attribute = len(sexp) > 2 and type(sexp[2]) is Symbol
+    attribute = str(sexp[2]) if has_attribute else ""
+    where = f"{name}.{attribute}" if attribute else name
+    canon_attr = ""
+    if attribute:
+        canon_attr = _canonical(cls, attribute)
+        if canon_attr is None:
+            problems.append((where, f"{name} has no attribute {attribute}"))
+    attrs = _read_pairs(sexp[3 if has_attribute else 2 :], where, problems) or {}
     key, rest = _split_key(cls, attrs, where, problems)
     for extra in rest:
         problems.append((f"{where}.{extra}", f"not part of the key of {name} ({', '.join(cls.KEY) or 'no key'})"))

@@ -25,6 +25,14 @@ def test_paper_val():
     assert parse_expr(PAPER_VAL_GAME) == Val("Game", "time", {})
 
 
+def test_val_of_a_whole_instance():
+    assert parse_expr("(val WorldState)") == Val("WorldState", "", {})
+    assert parse_expr("(val Player :playerNum 4 :whichTeam our)") == Val(
+        "Player", "", {"playerNumber": 4, "whichTeam": Team.OUR}
+    )
+    assert unparse(parse_expr("(val WorldState)")) == "(val WorldState)"
+
+
 def test_paper_exec_and_both_player_key_spellings():
     expr = parse_expr(PAPER_EXEC)
     assert isinstance(expr, Exec)

@@ -200,6 +200,7 @@ class Simulator:
         return {
             "t": w.time,
             "mode": w.mode,
+            "half": w.half,
             "score": [w.score[Side.LEFT], w.score[Side.RIGHT]],
             "ball": [round(b.x, 3), round(b.y, 3), round(b.vx, 3), round(b.vy, 3)],
             "players": [

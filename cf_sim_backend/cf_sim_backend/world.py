@@ -153,3 +153,27 @@ def kick_off_position(side: Side, number: int, taker: bool) -> tuple[float, floa
     if number == 10 and not taker:
         x = -9.5  # outside the centre circle
     return (x * side.sign, y * side.sign)
+
+
+def world_from_snapshot(snap: dict, params: Params | None = None) -> World:
+    """Rebuild a World from Simulator.snapshot() data (what the state topic carries)."""
+    w = World(params=params or Params())
+    w.time, w.mode = int(snap["t"]), str(snap["mode"])
+    w.score = {Side.LEFT: int(snap["score"][0]), Side.RIGHT: int(snap["score"][1])}
+    w.ball = Ball(*(float(v) for v in snap["ball"]))
+    for side, number, x, y, vx, vy, body, neck, stamina, goalie in snap["players"]:
+        p = Player(
+            side=Side(side),
+            number=int(number),
+            x=x,
+            y=y,
+            vx=vx,
+            vy=vy,
+            body=body,
+            neck=neck,
+            stamina=float(stamina),
+            goalie=bool(goalie),
+        )
+        w.players[p.key] = p
+    w.half = int(snap.get("half", 1))
+    return w

@@ -1,0 +1,69 @@
+"""What the per-player components share: parameters, the state subscription, the agent."""
+
+from __future__ import annotations
+
+import json
+
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.node import Node
+from std_msgs.msg import String
+
+from cf_commag.client import Agent
+
+from .topics import STATE_QOS, own_launch_command, state_topic
+from .world import Side, World, world_from_snapshot
+
+PLAYER_PARAMS = {
+    "sim": ("cf_sim", "the simulation to play in (its topics are /<sim>/...)"),
+    "side": ("l", "l or r"),
+    "number": (1, "shirt number, 1..11"),
+    "team": ("", "team name (default: blue for l, red for r)"),
+    "name": ("", "agent name (default: <team>_<number>_<role>)"),
+    "commag": ("/commag", "the ComMAg's node name"),
+    "lease": (1.0, "lease period (s) with the ComMAg"),
+}
+
+
+class PlayerComponentNode(Node):
+    """A node for one player's component; subclasses set ROLE, SERVICE_CLASS and handle states."""
+
+    ROLE = "component"
+    SERVICE_CLASS = "Service"
+
+    def __init__(self, node_name: str, extra_params: dict | None = None, **kwargs):
+        super().__init__(node_name, **kwargs)
+        params = {**PLAYER_PARAMS, **(extra_params or {})}
+        for name, (default, description) in params.items():
+            self.declare_parameter(name, default, ParameterDescriptor(description=description))
+        self.p = {name: self.get_parameter(name).value for name in params}
+        self.side = Side(self.p["side"])
+        self.number = int(self.p["number"])
+        self.team = self.p["team"] or ("blue" if self.side is Side.LEFT else "red")
+        name = self.p["name"] or f"{self.team}_{self.number}_{self.ROLE}"
+        self.world: World | None = None
+        self.create_subscription(String, state_topic(self.p["sim"]), self._on_state, STATE_QOS)
+        self.agent = Agent(
+            self,
+            name=name,
+            service_class=self.SERVICE_CLASS,
+            team=self.team,
+            player_number=self.number,
+            lease=float(self.p["lease"]),
+            commag=self.p["commag"],
+            launch_command=own_launch_command(),
+        )
+
+    def _on_state(self, msg: String) -> None:
+        try:
+            world = world_from_snapshot(json.loads(msg.data))
+        except (ValueError, KeyError, TypeError) as exc:
+            self.get_logger().error(f"bad state from the simulator: {exc}", throttle_duration_sec=5.0)
+            return
+        if (self.side, self.number) not in world.players:
+            self.get_logger().warning("my player is not in this simulation", throttle_duration_sec=5.0)
+            return
+        self.world = world
+        self.on_cycle(world)
+
+    def on_cycle(self, world: World) -> None:
+        raise NotImplementedError

@@ -1,0 +1,119 @@
+"""The simulator as a ROS node: plays cycles in real time, publishes the true state, takes commands."""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from pathlib import Path
+
+import rclpy
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.node import Node
+from std_msgs.msg import String
+
+from cf_commag.client import Agent, init, spin
+
+from .matchlog import MatchLog
+from .physics import CommandError
+from .sim import Simulator
+from .topics import COMMAND_QOS, STATE_QOS, command_topic, own_launch_command, state_topic
+from .world import Params, Side
+
+_PARAMS = {
+    "sim": ("cf_sim", "name of this simulation: topics are /<sim>/state and /<sim>/commands"),
+    "left_size": (11, "players on the left team (0..11)"),
+    "right_size": (11, "players on the right team (0..11)"),
+    "left_name": ("blue", "left team's name"),
+    "right_name": ("red", "right team's name"),
+    "seed": (0, "random seed: the same seed and commands give the same match"),
+    "cycle_period": (0.1, "seconds per cycle (0.1 is real time; smaller runs faster)"),
+    "half_cycles": (3000, "cycles per half"),
+    "halves": (2, "number of halves"),
+    "auto_kick_off_cycles": (50, "cycles before the kick-off happens by itself"),
+    "match_log": ("", "path of the match log (JSON lines); empty: none"),
+    "commag": ("/commag", "the ComMAg's node name"),
+    "exit_at_end": (False, "leave when the match is over"),
+}
+
+
+class SimNode(Node):
+    """Runs the embedded simulator (parameters in _PARAMS, each declared with a description)."""
+
+    def __init__(self, **kwargs):
+        super().__init__("sim", **kwargs)
+        for name, (default, description) in _PARAMS.items():
+            self.declare_parameter(name, default, ParameterDescriptor(description=description))
+        p = {name: self.get_parameter(name).value for name in _PARAMS}
+        self.p = p
+        self.sim = Simulator(
+            Params(half_cycles=p["half_cycles"], halves=p["halves"], auto_kick_off_cycles=p["auto_kick_off_cycles"]),
+            team_sizes=(p["left_size"], p["right_size"]),
+            team_names=(p["left_name"], p["right_name"]),
+            seed=p["seed"],
+        )
+        self.rejected = 0
+        self.log = MatchLog(Path(p["match_log"]), self.sim, p["cycle_period"]) if p["match_log"] else None
+        self.state_pub = self.create_publisher(String, state_topic(p["sim"]), STATE_QOS)
+        self.create_subscription(String, command_topic(p["sim"]), self._on_command, COMMAND_QOS)
+        self.agent = Agent(
+            self,
+            name=p["sim"],
+            service_class="Simulator",
+            commag=p["commag"],
+            lease=2.0,
+            launch_command=own_launch_command(),
+        )
+        self.timer = self.create_timer(p["cycle_period"], self._on_cycle)
+        self.done = False
+        self.get_logger().info(
+            f"simulating {p['left_name']} ({p['left_size']}) v {p['right_name']} ({p['right_size']}), "
+            f"seed {p['seed']}, {p['cycle_period'] * 1000:.0f} ms per cycle"
+        )
+
+    def _on_command(self, msg: String) -> None:
+        try:
+            c = json.loads(msg.data)
+            if c.get("cmd") == "say":
+                return
+            self.sim.command(Side(c["side"]), int(c["number"]), str(c["cmd"]), *c.get("args", []))
+        except (CommandError, ValueError, KeyError, TypeError) as exc:
+            self.rejected += 1
+            self.get_logger().warning(f"command refused: {exc} ({msg.data[:80]})", throttle_duration_sec=2.0)
+
+    def _on_cycle(self) -> None:
+        if self.done:
+            return
+        events = self.sim.step()
+        snap = self.sim.snapshot()
+        self.state_pub.publish(String(data=json.dumps(snap)))
+        if self.log is not None:
+            self.log.cycle(snap, events)
+        w = self.sim.world
+        for event in events:
+            self.get_logger().info(f"[{w.time:5d}] {event}  score {w.score[Side.LEFT]}:{w.score[Side.RIGHT]}")
+        if self.sim.finished:
+            self.done = True
+            if self.log is not None:
+                self.log.close()
+            self.get_logger().info(f"match over: {w.score[Side.LEFT]}:{w.score[Side.RIGHT]}")
+
+
+def main(args: list[str] | None = None) -> int:
+    """Entry point of ``ros2 run cf_sim_backend sim``."""
+    init(args=args if args is not None else sys.argv)
+    node = SimNode()
+    if node.p["exit_at_end"]:
+        while rclpy.ok() and not node.done:
+            rclpy.spin_once(node, timeout_sec=0.1)
+        time.sleep(0.2)
+        node.agent.close()
+        node.destroy_node()
+        rclpy.try_shutdown()
+        return 0
+    spin(node, [node.agent])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,245 @@
+"""From Framework Language actions to simulator commands, cycle by cycle (ROS-free).
+
+An action component turns each ``(exec Player <method> ...)`` into a
+:class:`Skill`. Every cycle the skill looks at the true state of its own body
+and the ball (what a robot knows from its own sensors and the perception it
+trusts) and gives at most one body command, until it is done or fails.
+Targets arrive in the player's own frame and are turned into the absolute one.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from cf_lang.ontology import actions as act
+
+from .perception import to_own_frame
+from .world import Player, Side, World, direction_deg, distance, norm_deg
+
+Command = tuple  # ("dash", power, dir) | ("turn", moment) | ("kick", power, dir) | ...
+TIMEOUT_CYCLES = 300
+
+
+class SkillError(ValueError):
+    """The action cannot be carried out now (e.g. the ball is not kickable)."""
+
+
+@dataclass
+class Step:
+    commands: list[Command]
+    status: str = "running"  # running | done | failed
+    reason: str = ""
+
+
+def _turn_moment(world: World, me: Player, angle: float) -> float:
+    """The turn moment that turns the body by ``angle`` degrees at the current speed."""
+    speed = math.hypot(me.vx, me.vy)
+    return max(-180.0, min(180.0, angle * (1.0 + world.params.inertia_moment * speed)))
+
+
+def _absolute(side: Side, x: float, y: float) -> tuple[float, float]:
+    return to_own_frame(side, x, y)  # turning by 180 degrees is its own inverse
+
+
+def _go(world: World, me: Player, x: float, y: float, power: float) -> Command:
+    angle = norm_deg(direction_deg(me.x, me.y, x, y) - me.body)
+    if abs(angle) > 12.0:
+        return ("turn", _turn_moment(world, me, angle))
+    return ("dash", power)
+
+
+def kick_power_for(world: World, me: Player, dist: float) -> float:
+    """Power that makes the ball roll about ``dist`` metres (the ball decays by 0.94 per cycle)."""
+    speed = dist * (1 - world.params.ball_decay)
+    rate = world.params.kick_power_rate * 0.85
+    return max(10.0, min(100.0, speed / rate))
+
+
+class Skill:
+    """One action in progress."""
+
+    name = "skill"
+
+    def __init__(self) -> None:
+        self.cycles = 0
+
+    def step(self, world: World, me: Player) -> Step:
+        self.cycles += 1
+        if self.cycles > TIMEOUT_CYCLES:
+            return Step([], "failed", f"{self.name} did not finish in {TIMEOUT_CYCLES} cycles")
+        return self._step(world, me)
+
+    def _step(self, world: World, me: Player) -> Step:
+        raise NotImplementedError
+
+
+class Once(Skill):
+    """A single command, done at once."""
+
+    def __init__(self, command: Command, name: str):
+        super().__init__()
+        self.command, self.name = command, name
+
+    def _step(self, world: World, me: Player) -> Step:
+        return Step([self.command], "done")
+
+
+class MoveTo(Skill):
+    name = "moveTo"
+
+    def __init__(self, x: float, y: float, speed: float, tolerance: float = 0.7):
+        super().__init__()
+        self.x, self.y, self.speed, self.tolerance = x, y, speed, tolerance
+
+    def _step(self, world: World, me: Player) -> Step:
+        if distance(me.x, me.y, self.x, self.y) <= self.tolerance:
+            return Step([], "done")
+        return Step([_go(world, me, self.x, self.y, self.speed)])
+
+
+class TurnTo(Skill):
+    name = "turn"
+
+    def __init__(self, target: tuple[float, float] | None = None, heading: float | None = None):
+        super().__init__()
+        self.target, self.heading = target, heading
+
+    def _step(self, world: World, me: Player) -> Step:
+        heading = self.heading if self.target is None else direction_deg(me.x, me.y, *self.target)
+        angle = norm_deg(heading - me.body)
+        if abs(angle) <= 5.0:
+            return Step([], "done")
+        return Step([("turn", _turn_moment(world, me, angle))])
+
+
+def _chase_ball(world: World, me: Player) -> Step:
+    """Run to where the ball will be when we could get there (a few cycles ahead)."""
+    b = world.ball
+    if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
+        return Step([], "done")
+    lead = min(10, int(distance(me.x, me.y, b.x, b.y) / 1.0))
+    decay = world.params.ball_decay
+    factor = (1 - decay**lead) / (1 - decay)
+    return Step([_go(world, me, b.x + b.vx * factor, b.y + b.vy * factor, 100.0)])
+
+
+class Intercept(Skill):
+    name = "intercept"
+
+    def _step(self, world: World, me: Player) -> Step:
+        return _chase_ball(world, me)
+
+
+class KickTo(Skill):
+    """Shoot or pass: go to the ball if needed, then kick it towards a point."""
+
+    def __init__(self, name: str, x: float, y: float, power: float | None, approach: bool = True):
+        super().__init__()
+        self.name, self.x, self.y, self.power, self.approach = name, x, y, power, approach
+        self.kicked = False
+
+    def _step(self, world: World, me: Player) -> Step:
+        b = world.ball
+        if self.kicked:
+            return Step([], "done")
+        if distance(me.x, me.y, b.x, b.y) > world.params.kickable_distance:
+            if not self.approach:
+                return Step([], "failed", "the ball is not kickable")
+            return _chase_ball(world, me)
+        power = self.power if self.power is not None else kick_power_for(world, me, distance(b.x, b.y, self.x, self.y))
+        direction = norm_deg(direction_deg(b.x, b.y, self.x, self.y) - me.body)
+        self.kicked = True
+        return Step([("kick", power, direction)])
+
+
+class Dribble(Skill):
+    """Push the ball a little ahead towards the target, run after it, repeat."""
+
+    name = "dribble"
+
+    def __init__(self, x: float, y: float, speed: float):
+        super().__init__()
+        self.x, self.y, self.speed = x, y, speed
+
+    def _step(self, world: World, me: Player) -> Step:
+        b = world.ball
+        if distance(b.x, b.y, self.x, self.y) <= 1.5:
+            return Step([], "done")
+        if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
+            direction = norm_deg(direction_deg(b.x, b.y, self.x, self.y) - me.body)
+            return Step([("kick", 15.0 + 0.25 * self.speed, direction)])
+        return _chase_ball(world, me)
+
+
+def skill_for(method: str, action, side: Side, world: World, me: Player) -> Skill:
+    """The skill that carries out ``action`` (an ontology model); raises SkillError if it cannot start."""
+    prm = world.params
+    opp_goal = (side.sign * prm.field_length / 2, 0.0)
+    if isinstance(action, act.Kick):
+        if distance(me.x, me.y, world.ball.x, world.ball.y) > prm.kickable_distance:
+            raise SkillError("the ball is not kickable")
+        return Once(("kick", action.power, math.degrees(action.direction)), "kick")
+    if isinstance(action, act.Dash):
+        return Once(("dash", action.power, math.degrees(action.direction)), "dash")
+    if isinstance(action, act.Turn):
+        return Once(("turn", _turn_moment(world, me, math.degrees(action.angle))), "turn")
+    if isinstance(action, act.TurnHead):
+        return Once(("turn_neck", math.degrees(action.angle) - me.neck), "turnHead")
+    if isinstance(action, act.Tackle):
+        return Once(("tackle", action.power), "tackle")
+    if isinstance(action, act.Catch):
+        if not me.goalie:
+            raise SkillError("only the goalkeeper can catch")
+        return Once(("catch", math.degrees(action.direction)), "catch")
+    if isinstance(action, act.Say):
+        return Once(("say",), "say")
+    if isinstance(action, act.Move):
+        if not (world.mode.startswith(("before_kick_off", "goal_", "half_time", "kick_off_"))):
+            raise SkillError("move is allowed only before a kick-off")
+        x, y = action.target.x, action.target.y
+        return Once(("move", x, y), "move")  # move takes own-half coordinates as for the left side
+    if isinstance(action, act.MoveTo):
+        return MoveTo(*_absolute(side, action.target.x, action.target.y), action.speed)
+    if isinstance(action, act.TurnToDirection):
+        heading = math.degrees(action.direction) + (0.0 if side is Side.LEFT else 180.0)
+        return TurnTo(heading=norm_deg(heading))
+    if isinstance(action, act.TurnToObject):
+        return TurnTo(target=_object_position(action.obj, side, world))
+    if isinstance(action, act.Intercept):
+        return Intercept()
+    if isinstance(action, act.Dribble):
+        return Dribble(*_absolute(side, action.target.x, action.target.y), action.speed)
+    if isinstance(action, act.Shoot):
+        target = _absolute(side, action.target.x, action.target.y) if action.target else opp_goal
+        return KickTo("shoot", *target, action.power)
+    if isinstance(action, act.Pass):
+        if action.to is not None:
+            mate = world.players.get((side, action.to.player_number or 0))
+            if mate is None:
+                raise SkillError(f"no team-mate number {action.to.player_number}")
+            target = (mate.x, mate.y)
+        else:
+            target = _absolute(side, action.target.x, action.target.y)
+        return KickTo("pass", *target, action.power)
+    raise SkillError(f"{type(action).__name__} is not supported by this back-end")
+
+
+def _object_position(obj, side: Side, world: World) -> tuple[float, float]:
+    from cf_lang.ontology import Ball, Goal, Team
+    from cf_lang.ontology import Player as PlayerModel
+
+    if isinstance(obj, Ball):
+        return (world.ball.x, world.ball.y)
+    if isinstance(obj, PlayerModel):
+        whose = side if obj.which_team in (None, Team.OUR) else side.other
+        p = world.players.get((whose, obj.player_number or 0))
+        if p is None:
+            raise SkillError(f"no such player: {obj.which_team} {obj.player_number}")
+        return (p.x, p.y)
+    if isinstance(obj, Goal):
+        sign = side.sign if obj.which_team is Team.OPP else -side.sign
+        return (sign * world.params.field_length / 2, 0.0)
+    if obj.positioning is not None:  # a flag with a given position
+        return _absolute(side, obj.positioning.x, obj.positioning.y)
+    raise SkillError("cannot locate that object")

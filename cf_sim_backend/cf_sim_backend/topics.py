@@ -1,0 +1,35 @@
+"""The link between the simulator and its per-player components (the back-end's own wire, like rcssserver's UDP).
+
+``/<sim>/state``: std_msgs/String, one JSON object per cycle (Simulator.snapshot()).
+``/<sim>/commands``: std_msgs/String, one JSON object per command:
+``{"side": "l", "number": 7, "cmd": "dash", "args": [80, 0]}``.
+Components speak the Framework Language to everyone else; only this link is simulator-specific.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+
+from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+STATE_QOS = QoSProfile(depth=5, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
+COMMAND_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
+
+
+def state_topic(sim: str) -> str:
+    return f"/{sim}/state"
+
+
+def command_topic(sim: str) -> str:
+    return f"/{sim}/commands"
+
+
+def encode_command(side: str, number: int, cmd: str, args: tuple) -> str:
+    return json.dumps({"side": side, "number": number, "cmd": cmd, "args": list(args)})
+
+
+def own_launch_command() -> list[str]:
+    """How to start this very process again (the ComMAg relaunches it with this)."""
+    return [os.path.realpath(sys.argv[0]), *sys.argv[1:]]

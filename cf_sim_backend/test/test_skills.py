@@ -1,0 +1,102 @@
+"""Skills turn Framework Language actions into simulator commands; run them in the real simulator core."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from test_sim_core import QUIET, sim_with
+
+from cf_lang import parse_expr
+from cf_sim_backend.skills import SkillError, skill_for
+from cf_sim_backend.world import Params, Side, distance
+
+
+def run(sim, side, number, text, cycles=300):
+    """Carry out an exec on the simulator until the skill ends; return (status, cycles)."""
+    me = sim.world.player(side, number)
+    skill = skill_for("", parse_expr(text).action, side, sim.world, me)
+    for _ in range(cycles):
+        step = skill.step(sim.world, me)
+        for cmd in step.commands:
+            if cmd[0] != "say":
+                sim.command(side, number, cmd[0], *cmd[1:])
+        sim.step()
+        if step.status != "running":
+            return step.status, skill.cycles
+    return "running", skill.cycles
+
+
+def exec_(method, args="", number=7):
+    return f"(exec Player {method} :playerNumber {number} :whichTeam our {args})"
+
+
+@pytest.mark.parametrize("side", [Side.LEFT, Side.RIGHT])
+def test_move_to_in_own_frame(side):
+    sim = sim_with((side, 7, 0.0, 0.0, 0.0))
+    status, _ = run(sim, side, 7, exec_("moveTo", ":target (AbsolutePositioning :x 10 :y 5)"))
+    me = sim.world.player(side, 7)
+    assert status == "done"
+    # (10, 5) in the player's own frame: (-10, -5) in the absolute one for the right side.
+    assert distance(me.x, me.y, 10 * side.sign, 5 * side.sign) < 1.0
+
+
+def test_intercept_then_shoot_scores():
+    sim = sim_with((Side.LEFT, 9, 20.0, 10.0, 90.0))
+    sim.world.ball.x, sim.world.ball.y, sim.world.ball.vx = 30.0, 0.0, 0.5
+    assert run(sim, Side.LEFT, 9, exec_("intercept", number=9))[0] == "done"
+    assert run(sim, Side.LEFT, 9, exec_("shoot", number=9))[0] == "done"
+    for _ in range(60):
+        sim.step()
+    assert sim.world.score[Side.LEFT] == 1
+
+
+def test_pass_reaches_the_team_mate():
+    sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 15.0, 10.0, 0.0))
+    sim.world.ball.x = 0.6
+    assert run(sim, Side.LEFT, 4, exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4))[0] == "done"
+    closest = 99.0
+    for _ in range(80):
+        sim.step()
+        closest = min(closest, distance(sim.world.ball.x, sim.world.ball.y, 15.0, 10.0))
+    assert closest < 3.0
+
+
+def test_dribble_keeps_the_ball_to_the_target():
+    sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 0.0))
+    sim.world.ball.x = 0.6
+    status, _ = run(sim, Side.LEFT, 10, exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10), 400)
+    assert status == "done" and distance(sim.world.ball.x, sim.world.ball.y, 15.0, 0.0) <= 1.6
+
+
+def test_turn_to_object_and_direction():
+    sim = sim_with((Side.LEFT, 6, 0.0, 0.0, 0.0), (Side.RIGHT, 3, 0.0, 10.0, 0.0))
+    assert run(sim, Side.LEFT, 6, exec_("turnToObject", ":obj (Player :playerNumber 3 :whichTeam opp)", 6))[0] == "done"
+    assert sim.world.player(Side.LEFT, 6).body == pytest.approx(90.0, abs=5.1)
+    assert run(sim, Side.LEFT, 6, exec_("turnToDirection", ":direction 3.14159", 6))[0] == "done"
+    assert abs(sim.world.player(Side.LEFT, 6).body) == pytest.approx(180.0, abs=5.1)
+
+
+def test_kick_power_and_head():
+    sim = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0))
+    sim.world.ball.x = 0.5
+    assert run(sim, Side.LEFT, 2, exec_("kick", f":power 50 :direction {math.pi / 2}", 2))[0] == "done"
+    assert sim.world.ball.vy > 0.5 and abs(sim.world.ball.vx) < 0.1
+    assert run(sim, Side.LEFT, 2, exec_("turnHead", ":angle 0.5", 2))[0] == "done"
+    assert sim.world.player(Side.LEFT, 2).neck == pytest.approx(math.degrees(0.5))
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        (exec_("kick", ":power 50 :direction 0", 2), "not kickable"),
+        (exec_("catch", ":direction 0", 2), "only the goalkeeper"),
+        (exec_("move", ":target (AbsolutePositioning :x -10 :y 0)", 2), "only before a kick-off"),
+        (exec_("pass", ":to (Player :playerNumber 9 :whichTeam our)", 2), "no team-mate number 9"),
+    ],
+)
+def test_impossible_actions_are_refused_with_a_reason(text, words):
+    sim = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0), params=Params(**{**QUIET.__dict__}))
+    sim.world.ball.x = 20.0
+    with pytest.raises(SkillError, match=words):
+        skill_for("", parse_expr(text).action, Side.LEFT, sim.world, sim.world.player(Side.LEFT, 2))
