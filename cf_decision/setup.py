@@ -23,5 +23,5 @@ setup(
     maintainer_email="maintainers@commonframework.org",
     description="The league-independent decision component (one per player).",
     license="Apache-2.0",
-    entry_points={"console_scripts": []},
+    entry_points={"console_scripts": ["decision = cf_decision.decision_node:main"]},
 )

@@ -1,1 +1,1 @@
-"""cf_decision: the league-independent decision component."""
+"""cf_decision: the league-independent decision component (policy.py, roles.py ROS-free; decision_node.py)."""

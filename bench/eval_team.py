@@ -1,0 +1,115 @@
+"""Evaluation: the cf_decision team against the naive team (every player chases the ball).
+
+Plays seeded matches on the simulator core, in-process and without ROS, but through the same
+pieces the nodes use: each cf_decision player perceives with `perception.observe` (view cone,
+noise), decides with `cf_decision.policy.decide` and acts through `skills.skill_for`; team-mates
+share their times to the ball as the decision components do over ACL.
+
+    python bench/eval_team.py [--matches 10] [--players 11] [--half-cycles 1500]
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import statistics
+
+from cf_decision.policy import cycles_to_ball, decide
+from cf_sim_backend.chaser import chase_commands
+from cf_sim_backend.perception import observe
+from cf_sim_backend.sim import Simulator
+from cf_sim_backend.skills import SkillError, skill_for
+from cf_sim_backend.world import Params, Side
+
+
+class PolicyTeam:
+    """Drives one side with the cf_decision policy, one skill per player at a time."""
+
+    def __init__(self, sim: Simulator, side: Side, seed: int):
+        self.sim, self.side = sim, side
+        self.rng = random.Random(seed)
+        self.current: dict[int, tuple[tuple, object]] = {}
+        self.size = sum(1 for p in sim.world.players.values() if p.side is side)
+
+    def commands(self) -> None:
+        w = self.sim.world
+        states = {
+            p.number: observe(w, self.side, p.number, self.rng) for p in w.players.values() if p.side is self.side
+        }
+        claims = {}
+        for n, st in states.items():
+            if st.ball and st.ball.positioning and st.me and st.me.positioning:
+                claims[n] = cycles_to_ball(
+                    (st.me.positioning.x, st.me.positioning.y), (st.ball.positioning.x, st.ball.positioning.y)
+                )
+        for n, st in states.items():
+            me = w.player(self.side, n)
+            decision = decide(st, n, self.size, claims)
+            key = decision.key()
+            current = self.current.get(n)
+            if current is None or current[0] != key:
+                try:
+                    skill = skill_for(decision.method, decision.action, self.side, w, me)
+                except SkillError:
+                    self.current.pop(n, None)
+                    continue
+                current = self.current[n] = (key, skill)
+            step = current[1].step(w, me)
+            for cmd in step.commands:
+                if cmd[0] != "say":
+                    self.sim.command(self.side, n, cmd[0], *cmd[1:])
+            if step.status != "running":
+                self.current.pop(n, None)
+
+
+def play(seed: int, players: int, half_cycles: int) -> dict:
+    sim = Simulator(
+        Params(half_cycles=half_cycles, auto_kick_off_cycles=5),
+        team_sizes=(players, players),
+        team_names=("cf_decision", "chasers"),
+        seed=seed,
+    )
+    ours = PolicyTeam(sim, Side.LEFT, seed)
+    while not sim.finished:
+        ours.commands()
+        chase_commands(sim, Side.RIGHT)
+        sim.step()
+    w = sim.world
+    return {
+        "seed": seed,
+        "ours": w.score[Side.LEFT],
+        "theirs": w.score[Side.RIGHT],
+        "shots": sim.stats["shots"][Side.LEFT],
+        "kicks": sim.stats["kicks"][Side.LEFT],
+        "possession": sim.stats["possession"][Side.LEFT] / max(1, sum(sim.stats["possession"].values())),
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--matches", type=int, default=10)
+    parser.add_argument("--players", type=int, default=11)
+    parser.add_argument("--half-cycles", type=int, default=1500)
+    args = parser.parse_args()
+    rows = [play(seed, args.players, args.half_cycles) for seed in range(args.matches)]
+    print(f"{args.players} v {args.players}, {2 * args.half_cycles} cycles a match, cf_decision (left) v chasers\n")
+    print("| seed | cf_decision | chasers | result | our shots | our kicks | our possession |")
+    print("|---:|---:|---:|---|---:|---:|---:|")
+    for r in rows:
+        result = "win" if r["ours"] > r["theirs"] else "draw" if r["ours"] == r["theirs"] else "loss"
+        print(
+            f"| {r['seed']} | {r['ours']} | {r['theirs']} | {result} | {r['shots']} | {r['kicks']} "
+            f"| {r['possession']:.0%} |"
+        )
+    wins = sum(r["ours"] > r["theirs"] for r in rows)
+    draws = sum(r["ours"] == r["theirs"] for r in rows)
+    gd = sum(r["ours"] - r["theirs"] for r in rows)
+    print(
+        f"\nwins {wins}, draws {draws}, losses {len(rows) - wins - draws}; goals "
+        f"{sum(r['ours'] for r in rows)}:{sum(r['theirs'] for r in rows)} (difference {gd:+d}); "
+        f"median goal difference per match {statistics.median(r['ours'] - r['theirs'] for r in rows):+.1f}"
+    )
+
+
+if __name__ == "__main__":
+    main()

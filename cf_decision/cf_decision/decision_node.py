@@ -1,0 +1,193 @@
+"""A player's decision component: the policy, wired to the framework (a thin node).
+
+It finds its player's perception (WorldModel) and action (Action) providers
+through the ComMAg, subscribes to the perception's WorldState, and for every
+perceived cycle asks the policy what to do; a new decision becomes a
+fipa-request to the action provider. Team-mates' decision components
+exchange their times to the ball (``inform`` with the intended
+``(exec Player intercept ...)`` and an ``:X-eta`` parameter), which the policy
+uses to pick who goes for the ball.
+
+Redundancy: providers are looked up again for every request, so when the one
+in use is withdrawn or suspect the next healthy one takes over (within one
+lease); a perception provider that stops informing is replaced the same way.
+Two decision components for one player may run: only the one registered with
+``active:=true`` acts; a standby takes over when the active one is withdrawn.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.node import Node
+
+from cf_commag.client import Agent, init, spin
+from cf_lang import Exec, LanguageError, parse_expr
+from cf_lang.acl import AclMessage, AgentId, Performative
+from cf_lang.expr import to_sexp
+from cf_lang.ontology import Team, WorldState
+from cf_lang.sexp import dumps
+
+from .policy import Decision, cycles_to_ball, decide
+
+_PARAMS = {
+    "team": ("blue", "team name, as the components register it"),
+    "number": (1, "shirt number"),
+    "team_size": (11, "players in the team (for the formation)"),
+    "name": ("", "agent name (default: <team>_<number>_decision)"),
+    "commag": ("/commag", "the ComMAg's node name"),
+    "lease": (1.0, "lease period (s)"),
+    "standby": (False, "act only when no other decision component of this player is alive"),
+}
+PERCEPTION_SILENCE = 1.0  # seconds without an inform before the perception provider is replaced
+
+
+class DecisionNode(Node):
+    """Decision of one player (service class PlayerDecision). Parameters: _PARAMS."""
+
+    def __init__(self, **kwargs):
+        super().__init__("decision", **kwargs)
+        for name, (default, description) in _PARAMS.items():
+            self.declare_parameter(name, default, ParameterDescriptor(description=description))
+        p = {name: self.get_parameter(name).value for name in _PARAMS}
+        self.team, self.number, self.team_size = p["team"], int(p["number"]), int(p["team_size"])
+        self.standby = bool(p["standby"])
+        name = p["name"] or f"{self.team}_{self.number}_decision{'_standby' if self.standby else ''}"
+        self.agent = Agent(
+            self,
+            name=name,
+            service_class="PlayerDecision",
+            team=self.team,
+            player_number=self.number,
+            lease=float(p["lease"]),
+            commag=p["commag"],
+            launch_command=_own_argv(),
+            on_message=self._on_message,
+        )
+        self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
+        self.perception: str | None = None
+        self.subscription = None
+        self.last_inform = 0.0
+        self.action_request = None
+        self.current: tuple | None = None
+        self.stats = {"requests": 0, "done": 0, "failed": 0, "cycles": 0}
+        self.create_timer(0.2, self._watch_providers)
+
+    # ---- wiring ---------------------------------------------------------------
+
+    def _watch_providers(self) -> None:
+        """Subscribe to the best perception provider; replace it if it went quiet or away."""
+        best = self.agent.provider("WorldModel", team=self.team, player_number=self.number)
+        quiet = time.monotonic() - self.last_inform > PERCEPTION_SILENCE
+        if best is None or (best == self.perception and not quiet):
+            return
+        if self.subscription is not None:
+            self.agent.cancel(self.subscription)
+        self.perception = best
+        self.last_inform = time.monotonic()
+        self.subscription = self.agent.request(
+            best, "(val WorldState)", protocol="fipa-subscribe", timeout=2.0, on_update=self._on_perception
+        )
+
+    def _acting(self) -> bool:
+        if not self.standby:
+            return True
+        others = [
+            e
+            for e in self.agent.providers("PlayerDecision", team=self.team, player_number=self.number)
+            if e.name != self.agent.me.name
+        ]
+        return not others
+
+    # ---- every cycle ----------------------------------------------------------
+
+    def _on_perception(self, msg: AclMessage) -> None:
+        if msg.performative is not Performative.INFORM or not msg.content:
+            return
+        self.last_inform = time.monotonic()
+        try:
+            state = parse_expr(msg.content)
+        except LanguageError as exc:
+            self.get_logger().warning(f"unreadable perception: {exc}", throttle_duration_sec=5.0)
+            return
+        if not isinstance(state, WorldState) or not self._acting():
+            return
+        self.stats["cycles"] += 1
+        now = time.monotonic()
+        claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
+        decision = decide(state, self.number, self.team_size, claims)
+        self._announce(state)
+        if decision.key() != self.current or self.action_request is None or self.action_request.done():
+            self._request(decision)
+
+    def _request(self, decision: Decision) -> None:
+        provider = self.agent.provider("Action", team=self.team, player_number=self.number)
+        if provider is None:
+            return
+        expr = Exec("Player", decision.method, {"playerNumber": self.number, "whichTeam": Team.OUR}, decision.action)
+        content = dumps(to_sexp(expr))
+        self.current = decision.key()
+        self.stats["requests"] += 1
+        self.action_request = self.agent.request(provider, content, timeout=3.0)
+        self.action_request.add_done_callback(self._on_answer)
+
+    def _on_answer(self, future) -> None:
+        reply = future.result()
+        self.stats["done" if reply.ok else "failed"] += 1
+        if not reply.ok:
+            self.current = None  # ask again next cycle
+
+    def _announce(self, state: WorldState) -> None:
+        """Tell team-mates' decision components how soon I can reach the ball."""
+        if not (state.ball and state.ball.positioning and state.me and state.me.positioning):
+            return
+        eta = cycles_to_ball(
+            (state.me.positioning.x, state.me.positioning.y), (state.ball.positioning.x, state.ball.positioning.y)
+        )
+        mates = [
+            e.name
+            for e in self.agent.providers("PlayerDecision", team=self.team)
+            if e.record.player_number != self.number
+        ]
+        if not mates:
+            return
+        content = f"(exec Player intercept :playerNumber {self.number} :whichTeam our)"
+        self.agent.send(
+            AclMessage(
+                Performative.INFORM,
+                receivers=tuple(AgentId(m) for m in mates),
+                content=content,
+                user=(("X-eta", str(eta)),),
+            )
+        )
+
+    def _on_message(self, msg: AclMessage) -> None:
+        if msg.performative is not Performative.INFORM:
+            return
+        eta = dict(msg.user).get("X-eta")
+        try:
+            expr = parse_expr(msg.content or "")
+            number = expr.key["playerNumber"]
+            self.claims[number] = (int(eta), time.monotonic())
+        except (LanguageError, AttributeError, KeyError, TypeError, ValueError):
+            return
+
+
+def _own_argv() -> list[str]:
+    import os
+
+    return [os.path.realpath(sys.argv[0]), *sys.argv[1:]]
+
+
+def main(args: list[str] | None = None) -> int:
+    """Entry point of ``ros2 run cf_decision decision``."""
+    init(args=args if args is not None else sys.argv)
+    node = DecisionNode()
+    spin(node, [node.agent])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,55 @@
+"""Roles and the formation: where each player stands, shifting with the ball (ROS-free).
+
+Positions are in the player's own frame (x towards the opponents' goal).
+"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+
+
+class Role(StrEnum):
+    GOALKEEPER = "goalkeeper"
+    DEFENDER = "defender"
+    MIDFIELDER = "midfielder"
+    FORWARD = "forward"
+
+
+# 4-3-3 for eleven; smaller teams take the first n entries of this order.
+_FORMATION: dict[int, tuple[Role, float, float]] = {
+    1: (Role.GOALKEEPER, -50.0, 0.0),
+    2: (Role.DEFENDER, -32.0, 16.0),
+    3: (Role.DEFENDER, -35.0, 5.0),
+    4: (Role.DEFENDER, -35.0, -5.0),
+    5: (Role.DEFENDER, -32.0, -16.0),
+    6: (Role.MIDFIELDER, -15.0, 14.0),
+    7: (Role.MIDFIELDER, -18.0, 0.0),
+    8: (Role.MIDFIELDER, -15.0, -14.0),
+    9: (Role.FORWARD, 2.0, 16.0),
+    10: (Role.FORWARD, 5.0, 0.0),
+    11: (Role.FORWARD, 2.0, -16.0),
+}
+# For small teams: goalkeeper, then a forward, a defender, a midfielder, ...
+_SMALL_ORDER = [1, 10, 3, 7, 9, 4, 8, 11, 2, 6, 5]
+
+
+def _slot(number: int, team_size: int) -> int:
+    if team_size >= 11:
+        return number
+    return _SMALL_ORDER[(number - 1) % 11]
+
+
+def role_of(number: int, team_size: int = 11) -> Role:
+    return _FORMATION[_slot(number, team_size)][0]
+
+
+def home_position(number: int, team_size: int = 11, *, ball_x: float = 0.0, ball_y: float = 0.0) -> tuple[float, float]:
+    """Formation position, pulled towards the ball: the block moves up and down the field with it."""
+    role, x, y = _FORMATION[_slot(number, team_size)]
+    if role is Role.GOALKEEPER:
+        return (x, 0.0)
+    shift = 0.55 * ball_x
+    limit = {Role.DEFENDER: (-45.0, 20.0), Role.MIDFIELDER: (-35.0, 35.0), Role.FORWARD: (-15.0, 45.0)}[role]
+    hx = max(limit[0], min(limit[1], x + shift))
+    hy = y + 0.25 * ball_y
+    return (hx, max(-30.0, min(30.0, hy)))

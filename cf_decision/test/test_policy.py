@@ -1,0 +1,86 @@
+"""The policy without ROS or simulator: roles, formation, who goes for the ball, pass and shot choices."""
+
+from __future__ import annotations
+
+from cf_decision.policy import choose_interceptor, choose_pass, decide, line_is_free
+from cf_decision.roles import Role, home_position, role_of
+from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
+from cf_lang.ontology import actions as act
+
+
+def at(x, y, yaw=0.0):
+    return AbsolutePositioning(x=x, y=y, yaw=yaw)
+
+
+def state(me, ball=None, players=(), mode=PlayMode.PLAY_ON, number=7):
+    return WorldState(
+        time=100,
+        me=Player(player_number=number, which_team=Team.OUR, positioning=at(*me)),
+        ball=Ball(positioning=at(*ball)) if ball else None,
+        players=tuple(players),
+        game=Game(time=100, play_mode=mode),
+    )
+
+
+def mate(n, x, y):
+    return Player(player_number=n, which_team=Team.OUR, positioning=at(x, y))
+
+
+def opp(n, x, y, goalie=False):
+    return Player(player_number=n, which_team=Team.OPP, positioning=at(x, y), is_goalie=goalie)
+
+
+def test_roles_and_formation_shift_with_the_ball():
+    assert [role_of(n) for n in (1, 3, 7, 10)] == [Role.GOALKEEPER, Role.DEFENDER, Role.MIDFIELDER, Role.FORWARD]
+    assert role_of(2, team_size=3) is Role.FORWARD  # small teams: keeper, then a forward, then a defender
+    back, _ = home_position(4, ball_x=-30.0)
+    up, _ = home_position(4, ball_x=30.0)
+    assert back < up and home_position(1, ball_x=30.0) == (-50.0, 0.0)
+
+
+def test_fastest_player_goes_for_the_ball_and_ties_go_to_the_lower_number():
+    assert choose_interceptor(7, 5, {7: 5, 8: 9})
+    assert not choose_interceptor(8, 9, {7: 5, 8: 9})
+    assert choose_interceptor(3, 6, {3: 6, 9: 6}) and not choose_interceptor(9, 6, {3: 6, 9: 6})
+    assert choose_interceptor(4, 10, {})
+
+
+def test_shoot_when_close():
+    d = decide(state((40.0, 3.0), ball=(40.5, 3.0), players=[opp(1, 51.0, 2.0, goalie=True)]), 9, 11, {})
+    assert d.method == "shoot" and d.action.target.y == -5.0  # away from the keeper's side
+
+
+def test_pass_to_an_open_mate_ahead_rather_than_dribble():
+    players = [mate(10, 15.0, 5.0), mate(11, -5.0, -10.0), opp(4, 2.0, -20.0)]
+    d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
+    assert d.method == "pass" and d.action.to.player_number == 10
+
+
+def test_no_pass_through_an_opponent():
+    players = [mate(10, 20.0, 0.0), opp(4, 10.0, 0.3)]
+    assert not line_is_free(state((0.0, 0.0), players=players), (0.0, 0.0), (20.0, 0.0))
+    assert line_is_free(state((0.0, 0.0), players=players), (0.0, 0.0), (0.0, 20.0))
+    assert choose_pass(state((0.0, 0.0), players=players), (0.0, 0.0)) is None
+    d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
+    assert d.method == "dribble"
+
+
+def test_intercept_or_hold_position():
+    assert decide(state((0.0, 0.0), ball=(5.0, 0.0)), 7, 11, {}).method == "intercept"
+    d = decide(state((-18.0, 0.0), ball=(5.0, 0.0)), 7, 11, {9: 1})
+    assert d.method in ("moveTo", "turnToObject")
+
+
+def test_before_kick_off_take_the_formation():
+    d = decide(state((10.0, 10.0), ball=(0.0, 0.0), mode=PlayMode.BEFORE_KICK_OFF), 3, 11, {})
+    assert isinstance(d.action, act.Move) and d.action.target.x < 0
+
+
+def test_goalkeeper_guards_catches_clears():
+    keeper = dict(number=1)
+    d = decide(state((-50.0, 0.0), ball=(-49.2, 0.3), **keeper), 1, 11, {})
+    assert d.method == "pass"  # kickable: clear it
+    d = decide(state((-50.0, 0.0), ball=(-48.9, 0.0), **keeper), 1, 11, {})
+    assert d.method == "catch"
+    d = decide(state((-40.0, 10.0), ball=(20.0, 0.0), **keeper), 1, 11, {})
+    assert d.method == "moveTo" and d.action.target.x < -48
