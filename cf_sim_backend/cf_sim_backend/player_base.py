@@ -21,6 +21,8 @@ PLAYER_PARAMS = {
     "name": ("", "agent name (default: <team>_<number>_<role>)"),
     "commag": ("/commag", "the ComMAg's node name"),
     "lease": (1.0, "lease period (s) with the ComMAg"),
+    "relaunch_fails": (False, "register a launch command that fails (to show withdrawal)"),
+    "exit_at_start": (False, "exit with code 3 at once (what a failing launch does)"),
 }
 
 
@@ -40,6 +42,11 @@ class PlayerComponentNode(Node):
         self.number = int(self.p["number"])
         self.team = self.p["team"] or ("blue" if self.side is Side.LEFT else "red")
         name = self.p["name"] or f"{self.team}_{self.number}_{self.ROLE}"
+        if self.p["exit_at_start"]:
+            raise SystemExit(3)
+        launch = own_launch_command()
+        if self.p["relaunch_fails"]:
+            launch += ["--ros-args", "-p", "exit_at_start:=true"]
         self.world: World | None = None
         self.create_subscription(String, state_topic(self.p["sim"]), self._on_state, STATE_QOS)
         self.agent = Agent(
@@ -50,7 +57,7 @@ class PlayerComponentNode(Node):
             player_number=self.number,
             lease=float(self.p["lease"]),
             commag=self.p["commag"],
-            launch_command=own_launch_command(),
+            launch_command=launch,
         )
 
     def _on_state(self, msg: String) -> None:

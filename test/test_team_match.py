@@ -1,0 +1,97 @@
+"""A short match of decision components over DDS, with a redundant action provider taken away.
+
+Two blue players (perception, action, decision each; player 2 has a second action provider) against
+one red player. Midway blue 2's action provider in use is killed: blue 2 keeps playing through its
+twin at once, and the ComMAg relaunches the killed one.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+
+from test_sim_match import start_player_component, start_sim_process
+
+from cf_system import executable, start_commag
+
+
+def start_decision(procs, tag, number, team_size):
+    argv = [
+        executable("cf_decision", "decision"),
+        "--ros-args",
+        "-r",
+        f"__node:=decision_{number}_{tag}",
+        "-p",
+        f"commag:=/commag_{tag}",
+        "-p",
+        f"team:=blue{tag}",
+        "-p",
+        f"number:={number}",
+        "-p",
+        f"team_size:={team_size}",
+        "-p",
+        "lease:=0.5",
+    ]
+    return procs.start(argv, f"decision_{number}")
+
+
+def test_decision_team_plays_and_survives_losing_an_action_provider(procs, probe, tag, tmp_path):
+    start_commag(procs, tag, tmp_path)
+    start_sim_process(procs, tag, tmp_path, half_cycles=500)
+    for number in (1, 2):
+        start_player_component(procs, tag, "perception", "l", number)
+        start_player_component(procs, tag, "action", "l", number)
+        start_decision(procs, tag, number, 2)
+    twin = procs.start(
+        [
+            executable("cf_sim_backend", "action"),
+            "--ros-args",
+            "-r",
+            f"__node:=action_l2b_{tag}",
+            "-p",
+            f"sim:=sim_{tag}",
+            "-p",
+            f"commag:=/commag_{tag}",
+            "-p",
+            "side:=l",
+            "-p",
+            "number:=2",
+            "-p",
+            f"team:=blue{tag}",
+            "-p",
+            f"name:=blue{tag}_2_action_twin",
+            "-p",
+            "lease:=0.5",
+        ],
+        "action_l2_twin",
+    )
+    assert twin.poll() is None
+    start_player_component(procs, tag, "perception", "r", 1)
+    start_player_component(procs, tag, "action", "r", 1)
+    first = f"blue{tag}_2_action"
+    probe.wait_kind(f"blue{tag}_2_decision", "registered", timeout=60)
+    probe.wait_kind(first, "registered", timeout=60)
+    probe.wait_kind(f"blue{tag}_2_action_twin", "registered", timeout=60)
+    log = tmp_path / "match.jsonl"
+
+    # Both blue players move: their positions change from the kick-off formation.
+    def moved(number):
+        lines = log.read_text().splitlines()
+        last = json.loads(lines[-1])
+        return any(
+            p[0] == "l" and p[1] == number and (abs(p[2]) > 1 and abs(p[4]) + abs(p[5]) > 0.01)
+            for p in last.get("players", [])
+        )
+
+    probe.spin_until(lambda: log.exists() and len(log.read_text().splitlines()) > 120, timeout=60, what="play")
+    probe.spin_until(lambda: moved(2), timeout=30, what="blue 2 moving")
+    # Take away the provider in use: "a_" sorts first, so the original is the one in use.
+    pid = next(p for p in procs.procs if "action_l2" in " ".join(p.args) and "twin" not in " ".join(p.args)).pid
+    os.kill(pid, signal.SIGKILL)
+    probe.wait_kind(first, "suspect", timeout=20)
+    probe.spin_until(lambda: moved(2), timeout=10, what="blue 2 still playing through the twin")
+    probe.wait_kind(first, "relaunched", timeout=30)
+    probe.spin_until(lambda: '"end"' in log.read_text(), timeout=120, what="the end of the match")
+    end = json.loads(log.read_text().splitlines()[-1])
+    assert end["stats"]["kicks"]["l"] > 0, end  # the decision team played the ball
