@@ -181,17 +181,15 @@ class Simulator:
         goal_x = p.side.sign * w.params.field_length / 2
         aim = direction_deg(w.ball.x, w.ball.y, goal_x, 0.0)
         moving = direction_deg(0.0, 0.0, w.ball.vx, w.ball.vy)
-        if (
-            abs(w.ball.x - goal_x) < 30.0
-            and abs((aim - moving + 180) % 360 - 180) < 15
-            and (w.ball.vx**2 + w.ball.vy**2) > 2.0
-        ):
+        shot = abs(w.ball.x - goal_x) < 30.0 and abs((aim - moving + 180) % 360 - 180) < 15
+        shot = shot and (w.ball.vx**2 + w.ball.vy**2) > 2.0
+        if shot:
             self.stats["shots"][p.side] += 1
         self._offside[p.side] = referee.offside_players(w, p.side, p.number)
         self._offside[p.side.other] = set()
         if piece_side is not None:
             referee.set_mode(w, "play_on")
-        return None
+        return f"shot {p.side.value} {p.number}" if shot else None
 
     def snapshot(self) -> dict:
         """The true state of this cycle as plain data (the match log's and the state topic's format)."""

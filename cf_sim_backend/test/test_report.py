@@ -1,0 +1,99 @@
+"""The match report: built from a real match log, and rendered by headless Chromium when it is installed.
+
+CI installs Chromium (Debian package `chromium`) and sets CF_REQUIRE_CHROMIUM=1, so there the
+rendering check fails rather than skips when the browser is missing.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import struct
+import subprocess
+import zlib
+from pathlib import Path
+
+import pytest
+
+from cf_sim_backend.chaser import chase_commands
+from cf_sim_backend.matchlog import MatchLog
+from cf_sim_backend.report import write_report
+from cf_sim_backend.sim import Simulator
+from cf_sim_backend.world import Params, Side
+
+
+@pytest.fixture
+def report(tmp_path: Path) -> Path:
+    sim = Simulator(
+        Params(half_cycles=300, auto_kick_off_cycles=2), team_sizes=(3, 3), team_names=("blue", "red"), seed=4
+    )
+    log = MatchLog(tmp_path / "match.jsonl", sim, 0.1)
+    while not sim.finished:
+        chase_commands(sim, Side.LEFT)
+        chase_commands(sim, Side.RIGHT)
+        events = sim.step()
+        log.cycle(sim.snapshot(), events)
+    log.close()
+    events = [
+        {"t": 0.5, "name": "blue_1_action", "kind": "registered", "state": "healthy", "reason": "registered"},
+        {"t": 9.0, "name": "blue_1_action", "kind": "suspect", "state": "suspect", "reason": "missed its lease"},
+        {"t": 9.1, "name": "blue_1_action", "kind": "relaunching", "state": "relaunching", "reason": "attempt 1"},
+        {"t": 10.0, "name": "blue_1_action", "kind": "relaunched", "state": "healthy", "reason": "back"},
+    ]
+    return write_report(tmp_path / "match.jsonl", events, tmp_path / "report.html")
+
+
+def test_report_holds_score_pictures_and_timeline(report: Path):
+    text = report.read_text()
+    assert text.startswith("<!doctype html>")
+    assert text.count("<svg") == 3  # ball heat map and path, trajectories, registry timeline
+    assert "blue_1_action: suspect" in text and "polyline" in text
+    assert "possession" in text and "Goals:" in text
+
+
+def _png_colours(png: bytes) -> int:
+    """How many distinct pixel values an RGB(A) PNG screenshot holds (to tell a blank page from a picture)."""
+    pos, idat, width, height, channels = 8, b"", 0, 0, 4
+    while pos < len(png):
+        length, kind = struct.unpack(">I4s", png[pos : pos + 8])
+        data = png[pos + 8 : pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, _, colour = struct.unpack(">IIBB", data[:10])
+            channels = 4 if colour == 6 else 3
+        elif kind == b"IDAT":
+            idat += data
+        pos += 12 + length
+    raw = zlib.decompress(idat)
+    stride = width * channels + 1
+    rows = [raw[r * stride + 1 : (r + 1) * stride] for r in range(0, height, 7)]
+    return len({row[i : i + channels] for row in rows for i in range(0, len(row), channels * 5)})
+
+
+def test_report_renders_in_headless_chromium(report: Path, tmp_path: Path):
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        if os.environ.get("CF_REQUIRE_CHROMIUM") == "1":
+            pytest.fail("chromium is required here (CF_REQUIRE_CHROMIUM=1) but not installed")
+        pytest.skip("chromium is not installed (Debian package: chromium)")
+    shot = tmp_path / "report.png"
+    subprocess.run(
+        [
+            browser,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            f"--user-data-dir={tmp_path / 'profile'}",
+            "--window-size=1000,1800",
+            f"--screenshot={shot}",
+            report.as_uri(),
+        ],
+        check=True,
+        capture_output=True,
+        timeout=120,
+    )
+    assert shot.exists() and _png_colours(shot.read_bytes()) > 20
