@@ -8,7 +8,7 @@ withdraws it and the player's requests reroute to its redundant twin). It
 prints the match time, score and registry events as they happen, a summary
 at the end, and writes an HTML match report.
 
-    python tools/demo.py [--players 3] [--half-cycles 1000] [--cycle 0.05] [--out demo-output]
+    python tools/demo.py [--players 3] [--half-cycles 600] [--cycle 0.1] [--out demo-output]
 
 Full 11 v 11 in real time: --players 11 --half-cycles 3000 --cycle 0.1 (66 component processes).
 """
@@ -68,9 +68,18 @@ class Demo:
 
     def component(self, role: str, side: str, number: int, *extra: str, name: str = "") -> None:
         team = TEAMS[side]
-        params = ["-p", f"side:={side}", "-p", f"number:={number}", "-p", f"team:={team}"]
+        params = ["-p", f"side:={side}", "-p", f"number:={number}", "-p", f"team:={team}", "-p", "lease:=2.0"]
         if role == "decision":
-            params = ["-p", f"number:={number}", "-p", f"team:={team}", "-p", f"team_size:={self.args.players}"]
+            params = [
+                "-p",
+                f"number:={number}",
+                "-p",
+                f"team:={team}",
+                "-p",
+                f"team_size:={self.args.players}",
+                "-p",
+                "lease:=2.0",
+            ]
         if name:
             params += ["-p", f"name:={name}"]
         package = "cf_decision" if role == "decision" else "cf_sim_backend"
@@ -90,7 +99,7 @@ class Demo:
                 "reason": ev.reason,
             }
         )
-        if ev.kind_name not in ("registered", "renewed") or self.counts["registered"] > len(self.procs):
+        if ev.kind_name != "renewed":
             self.say(f"ComMAg: {ev.record.name:<22} {ev.kind_name:<13} {ev.reason}")
 
     def on_registry(self, msg: Registry) -> None:
@@ -144,6 +153,8 @@ class Demo:
                 f"log_dir:={self.out / 'logs' / 'relaunched'}",
                 "-p",
                 "backoff_initial:=0.3",
+                "-p",
+                "startup_grace:=15.0",
             ],
         )
         self.start(
@@ -157,6 +168,22 @@ class Demo:
                 f"port_file:={self.out / 'gateway.port'}",
             ],
         )
+        # Start the components one after the other: a burst of Python processes on a small machine
+        # would starve the ones already running of the CPU they need to renew their leases.
+        for side in ("l", "r"):
+            for number in range(1, a.players + 1):
+                for role in ("perception", "action", "decision"):
+                    extra = ["-p", "relaunch_fails:=true"] if (side, number, role) == ("l", 2, "action") else []
+                    self.component(role, side, number, *extra)
+                    self.spin(a.stagger)
+        # Blue 2 has a redundant action provider.
+        self.component("action", "l", 2, name="blue_2_action_twin")
+        expected = len(self.procs) - 2
+        self.say(f"started {expected} components; waiting until each has registered ...")
+        deadline = time.monotonic() + 120
+        while self.counts["registered"] < expected and time.monotonic() < deadline:
+            self.spin(0.2)
+        self.say(f"{self.counts['registered']} components registered; starting the simulator")
         self.start(
             "sim",
             [
@@ -171,21 +198,13 @@ class Demo:
                 "-p",
                 f"cycle_period:={a.cycle}",
                 "-p",
-                "auto_kick_off_cycles:=60",
+                "auto_kick_off_cycles:=30",
                 "-p",
                 f"match_log:={self.out / 'match.jsonl'}",
                 "-p",
                 f"seed:={a.seed}",
             ],
         )
-        for side in ("l", "r"):
-            for number in range(1, a.players + 1):
-                for role in ("perception", "action", "decision"):
-                    extra = ["-p", "relaunch_fails:=true"] if (side, number, role) == ("l", 2, "action") else []
-                    self.component(role, side, number, *extra)
-        # Blue 2 has a redundant action provider.
-        self.component("action", "l", 2, name="blue_2_action_twin")
-        self.say(f"started {len(self.procs)} processes; waiting for the kick-off ...")
 
         kill_one_at = a.half_cycles // 2
         fail_one_at = a.half_cycles + a.half_cycles // 3
@@ -247,8 +266,9 @@ class Demo:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--players", type=int, default=3)
-    parser.add_argument("--half-cycles", type=int, default=1000)
-    parser.add_argument("--cycle", type=float, default=0.05, help="seconds per cycle (0.1 = real time)")
+    parser.add_argument("--half-cycles", type=int, default=600)
+    parser.add_argument("--cycle", type=float, default=0.1, help="seconds per cycle (0.1 = real time)")
+    parser.add_argument("--stagger", type=float, default=0.6, help="seconds between component starts")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--out", default="demo-output")
     return Demo(parser.parse_args()).run()

@@ -46,7 +46,7 @@ from cf_lang.taxonomy import Direction
 
 from .convert import entry_from_msg
 from .records import Directory, Entry, Query, valid_agent_name
-from .registry import INCARNATION_KEY
+from .registry import INCARNATION_KEY, SUPERSEDED
 
 INBOX_QOS = QoSProfile(
     history=HistoryPolicy.KEEP_ALL,
@@ -275,7 +275,7 @@ class Agent:
         self._snapshot_sub = node.create_subscription(
             RegistryMsg, f"{commag}/registry", self._on_snapshot, SNAPSHOT_QOS
         )
-        self._timers = [node.create_timer(0.02, self._on_expire_timer)]
+        self._timers = [node.create_timer(0.1, self._on_expire_timer)]  # deadlines to 0.1 s; idle cost stays low
         if register:
             # Three renewals per lease: one late or lost renewal is not a missed lease.
             self._timers.append(node.create_timer(max(0.02, lease / 3.0), self._renew))
@@ -309,6 +309,12 @@ class Agent:
         if future.cancelled() or future.exception() is not None:
             return
         response = future.result()
+        if not response.accepted and response.reason == SUPERSEDED:
+            # A newer process of this component took over: two must never serve under one name.
+            self._log.error("a newer process of this component has registered; this one stops")
+            self._closed = True
+            self.node.context.try_shutdown()
+            return
         if not response.accepted:
             self._log.error(f"registration refused: {response.reason}", throttle_duration_sec=5.0)
         self.registered = response.accepted

@@ -132,6 +132,7 @@ class CommagNode(LifecycleNode):
             ),
             launch=lambda record: self._launcher.launch(record.name, record.launch_command),
             check_launch=policy.check,
+            cancel_launch=lambda name: self._launcher.kill(name),
         )
         self._store_path = (
             Path(cfg.persistence_path) if cfg.persistence_path else _ros_home() / "cf_commag" / "registry.json"

@@ -31,6 +31,15 @@ CLOSED_INCARNATIONS = 10_000
 INCARNATION_KEY = "incarnation"
 
 
+SUPERSEDED = "superseded: a newer process of this component has registered"
+
+
+def _remember(bounded: OrderedDict, key: str) -> None:
+    bounded[key] = None
+    while len(bounded) > CLOSED_INCARNATIONS:
+        bounded.popitem(last=False)
+
+
 def incarnation(record: Record) -> str:
     """The process incarnation a record's metadata names ("" if none)."""
     return next((v for k, v in record.metadata if k == INCARNATION_KEY), "")
@@ -79,10 +88,15 @@ class Registry:
         *,
         launch: Callable[[Record], None] | None = None,
         check_launch: Callable[[tuple[str, ...]], str | None] | None = None,
+        cancel_launch: Callable[[str], None] | None = None,
     ):
         self.config = config or RegistryConfig()
         self._launch = launch
         self._check_launch = check_launch
+        self._cancel_launch = cancel_launch
+        # Incarnations replaced by a newer process of the same component: fenced off, so
+        # that two processes never serve under one name (their clients shut down when refused).
+        self._superseded: OrderedDict[str, None] = OrderedDict()
         self.directory = Directory()
         # Incarnations that deregistered: a renewal of theirs still in flight must
         # not bring them back. A restarted process has a new incarnation.
@@ -102,6 +116,8 @@ class Registry:
                 reason = f"launch command refused: {refused}"
         if reason is None and incarnation(record) in self._closed:
             reason = "this incarnation has deregistered; a new process registers under a new incarnation"
+        if reason is None and incarnation(record) in self._superseded:
+            reason = SUPERSEDED
         if reason is not None:
             return Result(False, reason), []
         lease = record.lease_period or cfg.default_lease
@@ -114,6 +130,18 @@ class Registry:
             self.changed = True
             return Result(True, "registered", lease), [self._event(entry, EventKind.REGISTERED, "registered", now)]
 
+        old, new = incarnation(entry.record), incarnation(record)
+        if entry.state is State.RELAUNCHING and old and new == old:
+            # Only late, not dead: keep it, and stop the process we launched in its place.
+            if self._cancel_launch is not None:
+                self._cancel_launch(record.name)
+            entry.last_renewal = now
+            self._set(entry, State.HEALTHY, now)
+            entry.healthy_since = now
+            reason = "was only late: the process launched in its place is stopped"
+            return Result(True, "renewed", lease), [self._event(entry, EventKind.RENEWED, reason, now)]
+        if old and new and old != new:
+            _remember(self._superseded, old)
         if entry.record != record:
             entry.record = record
             self.directory.put(entry)
@@ -147,9 +175,7 @@ class Registry:
         self.changed = True
         closed = incarnation(entry.record)
         if closed:
-            self._closed[closed] = None
-            while len(self._closed) > CLOSED_INCARNATIONS:
-                self._closed.popitem(last=False)
+            _remember(self._closed, closed)
         return Result(True, "deregistered"), [self._event(entry, EventKind.DEREGISTERED, "deregistered", now)]
 
     def lookup(self, query: Query) -> list[Entry]:

@@ -210,3 +210,24 @@ def test_dump_and_restore_keep_every_registration(reg, launcher):
     fresh.register(rec("a_action", "Action", team="blue"), now=100.5)
     fresh.register(rec("b_kick"), now=100.5)
     assert fresh.tick(101.0) == [] and launcher.launched == []
+
+
+def test_a_late_component_is_kept_and_the_launch_in_its_place_stopped():
+    cancelled = []
+    launcher = FakeLauncher()
+    reg = Registry(CFG, launch=launcher, cancel_launch=cancelled.append)
+    old = rec(metadata=(("incarnation", "pid1-a"),))
+    reg.register(old, now=0.0)
+    reg.tick(1.2)  # missed its lease: relaunching
+    assert launcher.launched == ["blue_1_kick"]
+    _, events = reg.register(old, now=1.3)  # the old process was only slow
+    assert kinds(events) == [EventKind.RENEWED] and "only late" in events[0].reason
+    assert cancelled == ["blue_1_kick"] and reg.directory.get("blue_1_kick").state is State.HEALTHY
+
+
+def test_a_newer_process_fences_off_the_older_one():
+    reg = Registry(CFG)
+    reg.register(rec(metadata=(("incarnation", "pid1-a"),)), now=0.0)
+    assert reg.register(rec(metadata=(("incarnation", "pid2-b"),)), now=0.5)[0].accepted
+    result, _ = reg.register(rec(metadata=(("incarnation", "pid1-a"),)), now=0.6)
+    assert not result.accepted and result.reason.startswith("superseded")

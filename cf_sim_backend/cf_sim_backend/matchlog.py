@@ -15,7 +15,7 @@ VERSION = 1
 class MatchLog:
     def __init__(self, path: Path, sim: Simulator, cycle_period: float):
         path.parent.mkdir(parents=True, exist_ok=True)
-        self._file = open(path, "w", encoding="utf-8")  # noqa: SIM115 - lives as long as the match
+        self._file = open(path, "w", encoding="utf-8", buffering=1)  # noqa: SIM115 - lives as long as the match
         prm = sim.world.params
         self._sim = sim
         self._write(
