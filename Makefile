@@ -52,7 +52,7 @@ test: build lint
 	$(WS) && python tools/run_tests.py
 
 demo: build
-	$(WS) && python tools/demo.py
+	$(WS) && python tools/demo.py $(DEMO_ARGS)
 
 bench: build
 	$(WS) && for b in bench/bench_*.py; do echo "==> $$b"; python $$b; done
