@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import sys
 import threading
 import time
 import uuid
@@ -44,7 +45,7 @@ from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.protocols import Conversation, ConversationTable
 from cf_lang.taxonomy import Direction
 
-from .convert import entry_from_msg
+from .convert import directory_from_msg
 from .records import Directory, Entry, Query, valid_agent_name
 from .registry import INCARNATION_KEY, SUPERSEDED
 
@@ -360,13 +361,7 @@ class Agent:
     # ---- lookups -----------------------------------------------------------
 
     def _on_snapshot(self, msg: RegistryMsg) -> None:
-        directory = Directory()
-        for rec in msg.records:
-            try:
-                directory.put(entry_from_msg(rec))
-            except ValueError:
-                continue
-        self._directory = directory
+        self._directory = directory_from_msg(msg)
         self._directory_stamp = time.monotonic()
 
     def providers(
@@ -603,3 +598,16 @@ def init(args: list[str] | None = None) -> None:
     from rclpy.signals import SignalHandlerOptions
 
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+
+
+def own_launch_command() -> list[str]:
+    """How to start this very process again: what a component registers as its launch command."""
+    return [os.path.realpath(sys.argv[0]), *sys.argv[1:]]
+
+
+def run(make_node) -> int:
+    """Entry point body of a component: init, build the node (it has ``.agent``), spin, deregister."""
+    init(args=sys.argv)
+    node = make_node()
+    spin(node, [node.agent])
+    return 0

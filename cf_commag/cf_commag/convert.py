@@ -6,7 +6,7 @@ from cf_interfaces.msg import ComponentRecord, KeyValue, RegistryEvent
 from cf_interfaces.srv import Lookup
 from cf_lang.taxonomy import Direction
 
-from .records import Entry, Query, Record, Transport
+from .records import Directory, Entry, Query, Record, Transport
 from .registry import Event
 
 
@@ -71,6 +71,28 @@ def to_query(request: Lookup.Request) -> Query:
         include_suspect=request.include_suspect,
         max_results=request.max_results,
     )
+
+
+def query_to_request(query: Query) -> Lookup.Request:
+    return Lookup.Request(
+        service_class=query.service_class,
+        direction=int(query.direction),
+        team=query.team,
+        player_number=query.player_number,
+        include_suspect=query.include_suspect,
+        max_results=query.max_results,
+    )
+
+
+def directory_from_msg(msg) -> Directory:
+    """A lookup cache from the ComMAg's registry snapshot (records it cannot read are left out)."""
+    directory = Directory()
+    for rec in msg.records:
+        try:
+            directory.put(entry_from_msg(rec))
+        except ValueError:
+            continue
+    return directory
 
 
 def entry_from_msg(msg: ComponentRecord) -> Entry:

@@ -22,7 +22,7 @@ from cf_interfaces.srv import Deregister, Lookup, Register
 
 from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic
 from .commag_node import EVENTS_QOS
-from .convert import entry_from_msg, to_msg
+from .convert import directory_from_msg, entry_from_msg, query_to_request, to_msg
 from .gateway import Gateway, GatewayConfig, form
 from .records import Directory, Entry, Query, Record
 from .registry import Result
@@ -144,14 +144,7 @@ class GatewayNode(Node):
         return Result(res.accepted, res.reason)
 
     async def lookup(self, query: Query) -> list[Entry]:
-        request = Lookup.Request(
-            service_class=query.service_class,
-            direction=int(query.direction),
-            team=query.team,
-            player_number=query.player_number,
-            include_suspect=query.include_suspect,
-            max_results=query.max_results,
-        )
+        request = query_to_request(query)
         try:
             res = await self._call(self._lookup, request)
         except (TimeoutError, RuntimeError) as exc:
@@ -205,13 +198,7 @@ class GatewayNode(Node):
     # ---- ROS callbacks ------------------------------------------------------
 
     def _on_snapshot(self, msg: RegistryMsg) -> None:
-        directory = Directory()
-        for rec in msg.records:
-            try:
-                directory.put(entry_from_msg(rec))
-            except ValueError:
-                continue
-        self._directory = directory
+        self._directory = directory_from_msg(msg)
 
     def _on_event(self, ev: RegistryEvent) -> None:
         if not self._watchers:

@@ -23,7 +23,7 @@ import time
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 
-from cf_commag.client import Agent, init, spin
+from cf_commag.client import Agent, own_launch_command, run
 from cf_lang import Exec, LanguageError, parse_expr
 from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.expr import to_sexp
@@ -63,7 +63,7 @@ class DecisionNode(Node):
             player_number=self.number,
             lease=float(p["lease"]),
             commag=p["commag"],
-            launch_command=_own_argv(),
+            launch_command=own_launch_command(),
             on_message=self._on_message,
         )
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
@@ -175,18 +175,9 @@ class DecisionNode(Node):
             return
 
 
-def _own_argv() -> list[str]:
-    import os
-
-    return [os.path.realpath(sys.argv[0]), *sys.argv[1:]]
-
-
-def main(args: list[str] | None = None) -> int:
+def main() -> int:
     """Entry point of ``ros2 run cf_decision decision``."""
-    init(args=args if args is not None else sys.argv)
-    node = DecisionNode()
-    spin(node, [node.agent])
-    return 0
+    return run(DecisionNode)
 
 
 if __name__ == "__main__":

@@ -6,7 +6,7 @@ import sys
 
 from std_msgs.msg import String
 
-from cf_commag.client import Refuse, Responder, init, spin
+from cf_commag.client import Refuse, Responder, run
 from cf_lang import Exec, parse_expr
 from cf_lang.acl import AclMessage
 from cf_lang.ontology import Team
@@ -71,12 +71,9 @@ class ActionNode(PlayerComponentNode):
             self.current = None
 
 
-def main(args: list[str] | None = None) -> int:
+def main() -> int:
     """Entry point of ``ros2 run cf_sim_backend action``."""
-    init(args=args if args is not None else sys.argv)
-    node = ActionNode()
-    spin(node, [node.agent])
-    return 0
+    return run(ActionNode)
 
 
 if __name__ == "__main__":

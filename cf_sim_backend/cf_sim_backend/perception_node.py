@@ -5,7 +5,7 @@ from __future__ import annotations
 import random
 import sys
 
-from cf_commag.client import Failure, Refuse, Responder, init, spin
+from cf_commag.client import Failure, Refuse, Responder, run
 from cf_lang import Val, parse_expr, unparse
 from cf_lang.acl import AclMessage
 from cf_lang.expr import _encode_value
@@ -101,12 +101,9 @@ class PerceptionNode(PlayerComponentNode):
         self.subscribers.append((responder, val))
 
 
-def main(args: list[str] | None = None) -> int:
+def main() -> int:
     """Entry point of ``ros2 run cf_sim_backend perception``."""
-    init(args=args if args is not None else sys.argv)
-    node = PerceptionNode()
-    spin(node, [node.agent])
-    return 0
+    return run(PerceptionNode)
 
 
 if __name__ == "__main__":

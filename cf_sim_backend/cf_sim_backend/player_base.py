@@ -8,9 +8,9 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 from std_msgs.msg import String
 
-from cf_commag.client import Agent
+from cf_commag.client import Agent, own_launch_command
 
-from .topics import STATE_QOS, own_launch_command, state_topic
+from .topics import STATE_QOS, state_topic
 from .world import Side, World, world_from_snapshot
 
 PLAYER_PARAMS = {

@@ -12,12 +12,12 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 from std_msgs.msg import String
 
-from cf_commag.client import Agent, init, spin
+from cf_commag.client import Agent, init, own_launch_command, spin
 
 from .matchlog import MatchLog
 from .physics import CommandError
 from .sim import Simulator
-from .topics import COMMAND_QOS, STATE_QOS, command_topic, own_launch_command, state_topic
+from .topics import COMMAND_QOS, STATE_QOS, command_topic, state_topic
 from .world import Params, Side
 
 _PARAMS = {

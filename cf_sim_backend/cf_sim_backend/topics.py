@@ -9,8 +9,6 @@ Components speak the Framework Language to everyone else; only this link is simu
 from __future__ import annotations
 
 import json
-import os
-import sys
 
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
@@ -28,8 +26,3 @@ def command_topic(sim: str) -> str:
 
 def encode_command(side: str, number: int, cmd: str, args: tuple) -> str:
     return json.dumps({"side": side, "number": number, "cmd": cmd, "args": list(args)})
-
-
-def own_launch_command() -> list[str]:
-    """How to start this very process again (the ComMAg relaunches it with this)."""
-    return [os.path.realpath(sys.argv[0]), *sys.argv[1:]]
