@@ -112,3 +112,16 @@ def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, t
     assert end["stats"]["kicks"]["l"] > 0
     cycles = [json.loads(x) for x in lines[1:-1]]
     assert cycles[-1]["mode"] == "time_over" and len(cycles) >= 400
+
+
+def test_sync_mode_steps_when_every_player_has_acted(procs, probe, tag, tmp_path):
+    start_commag(procs, tag, tmp_path)
+    start_sim_process(procs, tag, tmp_path, mode="sync", left_size=1, right_size=1, half_cycles=300)
+    for side in ("l", "r"):
+        start_player_component(procs, tag, "action", side, 1)
+    log = tmp_path / "match.jsonl"
+    probe.spin_until(lambda: log.exists() and '"end"' in log.read_text(), timeout=120, what="the end of the match")
+    end = json.loads(log.read_text().splitlines()[-1])
+    # Only the cycles before both action components were up waited for the timeout; the rest went in lockstep.
+    assert end["sync"]["steps"] >= 300
+    assert end["sync"]["steps"] - end["sync"]["timeouts"] >= 250, end["sync"]

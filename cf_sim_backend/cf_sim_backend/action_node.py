@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import sys
 
 from std_msgs.msg import String
@@ -54,6 +55,12 @@ class ActionNode(PlayerComponentNode):
         self.current = (skill, responder)
 
     def on_cycle(self, world: World) -> None:
+        self._act(world)
+        if self.step is not None:  # tell the simulator we are done with this cycle (its sync mode)
+            done = {"side": self.side.value, "number": self.number, "done": self.step}
+            self.commands.publish(String(data=json.dumps(done)))
+
+    def _act(self, world: World) -> None:
         if self.current is None:
             return
         skill, responder = self.current

@@ -34,8 +34,8 @@ class MatchLog:
     def cycle(self, snapshot: dict, events: list[str]) -> None:
         self._write({**snapshot, "events": events} if events else snapshot)
 
-    def close(self) -> None:
+    def close(self, extra: dict | None = None) -> None:
         stats = {k: {s.value: v for s, v in d.items()} for k, d in self._sim.stats.items()}
         w = self._sim.world
-        self._write({"end": True, "score": [w.score[Side.LEFT], w.score[Side.RIGHT]], "stats": stats})
+        self._write({"end": True, "score": [w.score[Side.LEFT], w.score[Side.RIGHT]], "stats": stats, **(extra or {})})
         self._file.close()

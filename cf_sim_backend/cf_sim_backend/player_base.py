@@ -48,6 +48,7 @@ class PlayerComponentNode(Node):
         if self.p["relaunch_fails"]:
             launch += ["--ros-args", "-p", "exit_at_start:=true"]
         self.world: World | None = None
+        self.step: int | None = None  # the simulator's step counter, for its sync mode
         self.create_subscription(String, state_topic(self.p["sim"]), self._on_state, STATE_QOS)
         self.agent = Agent(
             self,
@@ -62,7 +63,9 @@ class PlayerComponentNode(Node):
 
     def _on_state(self, msg: String) -> None:
         try:
-            world = world_from_snapshot(json.loads(msg.data))
+            data = json.loads(msg.data)
+            world = world_from_snapshot(data)
+            self.step = data.get("step")
         except (ValueError, KeyError, TypeError) as exc:
             self.get_logger().error(f"bad state from the simulator: {exc}", throttle_duration_sec=5.0)
             return

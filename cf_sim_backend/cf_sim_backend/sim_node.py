@@ -27,7 +27,13 @@ _PARAMS = {
     "left_name": ("blue", "left team's name"),
     "right_name": ("red", "right team's name"),
     "seed": (0, "random seed: the same seed and commands give the same match"),
-    "cycle_period": (0.1, "seconds per cycle (0.1 is real time; smaller runs faster)"),
+    "cycle_period": (0.1, "seconds per cycle in realtime mode (0.1 is real time; smaller runs faster)"),
+    "mode": (
+        "realtime",
+        "realtime: a cycle every cycle_period; sync: a cycle as soon as every player's action "
+        "component has reported done (as rcssserver's synch_mode), at most sync_timeout apart",
+    ),
+    "sync_timeout": (0.5, "sync mode: seconds to wait for missing players before playing the cycle anyway"),
     "half_cycles": (3000, "cycles per half"),
     "halves": (2, "number of halves"),
     "auto_kick_off_cycles": (50, "cycles before the kick-off happens by itself"),
@@ -64,7 +70,15 @@ class SimNode(Node):
             lease=2.0,
             launch_command=own_launch_command(),
         )
-        self.timer = self.create_timer(p["cycle_period"], self._on_cycle)
+        if p["mode"] not in ("realtime", "sync"):
+            raise ValueError(f"mode must be realtime or sync, not {p['mode']!r}")
+        self.sync = p["mode"] == "sync"
+        self.steps = 0
+        self.done_by: set[tuple[str, int]] = set()
+        self.last_step = time.monotonic()
+        self.sync_timeouts = 0
+        self.players = {(p_.side.value, p_.number) for p_ in self.sim.world.players.values()}
+        self.timer = self.create_timer(0.002 if self.sync else p["cycle_period"], self._on_timer)
         self.done = False
         self.get_logger().info(
             f"simulating {p['left_name']} ({p['left_size']}) v {p['right_name']} ({p['right_size']}), "
@@ -74,6 +88,10 @@ class SimNode(Node):
     def _on_command(self, msg: String) -> None:
         try:
             c = json.loads(msg.data)
+            if "done" in c:  # sync mode: this player's action component has acted on our last state
+                if int(c["done"]) == self.steps:
+                    self.done_by.add((str(c["side"]), int(c["number"])))
+                return
             if c.get("cmd") == "say":
                 return
             self.sim.command(Side(c["side"]), int(c["number"]), str(c["cmd"]), *c.get("args", []))
@@ -81,11 +99,25 @@ class SimNode(Node):
             self.rejected += 1
             self.get_logger().warning(f"command refused: {exc} ({msg.data[:80]})", throttle_duration_sec=2.0)
 
+    def _on_timer(self) -> None:
+        if not self.sync:
+            self._on_cycle()
+            return
+        waited = time.monotonic() - self.last_step
+        if self.done_by >= self.players or waited >= self.p["sync_timeout"]:
+            if not self.done_by >= self.players:
+                self.sync_timeouts += 1
+            self._on_cycle()
+
     def _on_cycle(self) -> None:
         if self.done:
             return
         events = self.sim.step()
+        self.steps += 1
+        self.done_by = set()
+        self.last_step = time.monotonic()
         snap = self.sim.snapshot()
+        snap["step"] = self.steps
         self.state_pub.publish(String(data=json.dumps(snap)))
         if self.log is not None:
             self.log.cycle(snap, events)
@@ -95,7 +127,9 @@ class SimNode(Node):
         if self.sim.finished:
             self.done = True
             if self.log is not None:
-                self.log.close()
+                self.log.close(
+                    extra={"sync": {"steps": self.steps, "timeouts": self.sync_timeouts}} if self.sync else None
+                )
             self.get_logger().info(f"match over: {w.score[Side.LEFT]}:{w.score[Side.RIGHT]}")
 
 
