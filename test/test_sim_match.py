@@ -88,9 +88,9 @@ def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, t
                     probe.spin_for(0.2)
                     continue
                 req = decision.request(
-                    provider, f"(exec Player {method} :playerNumber {number} :whichTeam our)", timeout=8
-                )
-                probe.spin_until(req.done, timeout=15, what=f"{method} answer")
+                    provider, f"(exec Player {method} :playerNumber {number} :whichTeam our)", timeout=20
+                )  # generous: their set piece can hold the ball for up to 100 cycles
+                probe.spin_until(req.done, timeout=30, what=f"{method} answer")
                 done += req.result().ok
         return done
 
