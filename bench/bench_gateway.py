@@ -30,7 +30,7 @@ from std_msgs.msg import String  # noqa: E402
 
 from cf_commag.gateway_client import GatewayClient  # noqa: E402
 from cf_commag.gateway_node import make_executor  # noqa: E402
-from cf_system import Processes, executable, start_commag  # noqa: E402
+from cf_system import Processes, start_commag, start_gateway  # noqa: E402
 
 QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
 PAYLOAD = "x" * 60
@@ -196,23 +196,7 @@ def main() -> None:
         start_commag(procs, tag, tmp)
         port_file = tmp / "port"
         kind = args.executor
-        procs.start(
-            [
-                executable("cf_commag", "gateway"),
-                "--ros-args",
-                "-r",
-                f"__node:=gateway_{tag}",
-                "-p",
-                "port:=0",
-                "-p",
-                f"port_file:={port_file}",
-                "-p",
-                f"commag:=/commag_{tag}",
-                "-p",
-                f"executor:={kind}",
-            ],
-            "gateway",
-        )
+        start_gateway(procs, tag, port_file, f"executor:={kind}")
         echo = f"echo_{tag}"
         helper = str(HERE / "helpers/echo_agents.py")
         procs.start([sys.executable, helper, "agent", echo, f"/commag_{tag}", kind], "echo")

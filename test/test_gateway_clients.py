@@ -15,7 +15,7 @@ import pytest
 
 from cf_commag.client import Agent
 from cf_commag.gateway_client import GatewayClient
-from cf_system import executable, start_commag, start_component
+from cf_system import start_commag, start_component, start_gateway
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -36,21 +36,7 @@ def framework(procs, probe, tag, tmp_path):
     """ComMAg + gateway + a ROS Kick provider; returns the gateway's port."""
     start_commag(procs, tag, tmp_path)
     port_file = tmp_path / "gateway.port"
-    procs.start(
-        [
-            executable("cf_commag", "gateway"),
-            "--ros-args",
-            "-r",
-            f"__node:=gateway_{tag}",
-            "-p",
-            "port:=0",
-            "-p",
-            f"port_file:={port_file}",
-            "-p",
-            f"commag:=/commag_{tag}",
-        ],
-        "gateway",
-    )
+    start_gateway(procs, tag, port_file)
     start_component(procs, tag, f"kick_{tag}", "--service-class", "Kick", "--team", "blue")
     probe.wait_kind(f"kick_{tag}", "registered")
     probe.spin_until(lambda: port_file.exists() and port_file.read_text().strip(), what="gateway port")
