@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import os
 import signal
+import time
 
 from cf_commag.client import Agent
 from cf_system import executable, start_commag
@@ -57,7 +58,7 @@ def start_player_component(procs, tag, role, side, number):
 
 def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, tmp_path):
     start_commag(procs, tag, tmp_path)
-    start_sim_process(procs, tag, tmp_path)
+    start_sim_process(procs, tag, tmp_path, half_cycles=1600)  # long enough to play on after the relaunch
     team = f"blue{tag}"
     action = {}
     for number in (1, 2):
@@ -78,10 +79,15 @@ def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, t
     probe.spin_until(future.done, what="perception answer")
     assert future.result().ok and future.result().content.startswith("(Game :time")
 
-    def play(number, rounds):
-        """intercept, then shoot, `rounds` times; returns how many requests were done."""
-        done = 0
-        for _ in range(rounds):
+    def play(number, wanted, seconds=90.0):
+        """Ask for intercept, then shoot, until `wanted` requests were done; returns the answers seen.
+
+        Some requests may fail on the way (the ball held in the other side's set piece, a shot
+        replaced by the next request), so it keeps asking until the deadline.
+        """
+        answers = []
+        deadline = time.monotonic() + seconds
+        while sum(a == "done" for a in answers) < wanted and time.monotonic() < deadline:
             for method in ("intercept", "shoot"):
                 provider = decision.provider("Action", team=team, player_number=number)
                 if provider is None:
@@ -91,10 +97,11 @@ def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, t
                     provider, f"(exec Player {method} :playerNumber {number} :whichTeam our)", timeout=20
                 )  # generous: their set piece can hold the ball for up to 100 cycles
                 probe.spin_until(req.done, timeout=30, what=f"{method} answer")
-                done += req.result().ok
-        return done
+                answers.append(req.result().state)
+        return answers
 
-    assert play(2, 2) >= 2
+    answers = play(2, 2)
+    assert answers.count("done") >= 2, answers
     # Bad requests are answered, not ignored.
     req = decision.request(action_name, "(exec Player fly :playerNumber 2 :whichTeam our)")
     probe.spin_until(req.done)
@@ -103,15 +110,18 @@ def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, t
     os.kill(action[2].pid, signal.SIGKILL)
     probe.wait_kind(action_name, "suspect", timeout=20)
     probe.wait_kind(action_name, "relaunched", timeout=30)
-    assert play(2, 2) >= 2  # the relaunched component plays on
+    answers = play(2, 2)
+    assert answers.count("done") >= 2, answers  # the relaunched component plays on
 
-    probe.spin_until(lambda: '"end"' in (tmp_path / "match.jsonl").read_text(), timeout=60, what="the end of the match")
+    probe.spin_until(
+        lambda: '"end"' in (tmp_path / "match.jsonl").read_text(), timeout=240, what="the end of the match"
+    )
     lines = (tmp_path / "match.jsonl").read_text().splitlines()
     header, end = json.loads(lines[0]), json.loads(lines[-1])
     assert header["format"] == "cf-match-log" and header["teams"]["l"] == "blue"
     assert end["stats"]["kicks"]["l"] > 0
     cycles = [json.loads(x) for x in lines[1:-1]]
-    assert cycles[-1]["mode"] == "time_over" and len(cycles) >= 400
+    assert cycles[-1]["mode"] == "time_over" and len(cycles) >= 1600
 
 
 def test_sync_mode_steps_when_every_player_has_acted(procs, probe, tag, tmp_path):

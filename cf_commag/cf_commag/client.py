@@ -88,7 +88,7 @@ class Outbox:
 
     def send(self, receiver: str, text: str) -> None:
         pub = self._matched.get(receiver)
-        if pub is not None:
+        if pub is not None and pub.get_subscription_count() > 0:
             pub.publish(String(data=text))
             return
         with self._lock:
@@ -97,10 +97,12 @@ class Outbox:
                 pub = self._node.create_publisher(String, inbox_topic(receiver), INBOX_QOS)
                 self._publishers[receiver] = pub
             held = self._held.get(receiver)
-            if held is None and pub.get_subscription_count() > 0:
+            if held is None and pub.get_subscription_count() > 0:  # (again) matched: send at once
                 self._matched[receiver] = pub
                 pub.publish(String(data=text))
                 return
+            # Not matched (yet, or any more: the receiver died and may be relaunched): hold it.
+            self._matched.pop(receiver, None)
             self._held.setdefault(receiver, []).append((time.monotonic(), text))
 
     def flush(self) -> None:
