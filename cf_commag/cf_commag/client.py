@@ -266,7 +266,6 @@ class Agent:
         self._handlers: dict[str, Handler] = {}
         self._outbox = Outbox(node)
         self._directory = Directory()
-        self._directory_stamp = 0.0
         self._pending_register: Future | None = None
         self._pending_since = 0.0
         self._closed = False
@@ -364,7 +363,6 @@ class Agent:
 
     def _on_snapshot(self, msg: RegistryMsg) -> None:
         self._directory = directory_from_msg(msg)
-        self._directory_stamp = time.monotonic()
 
     def providers(
         self,

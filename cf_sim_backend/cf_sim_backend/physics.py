@@ -117,29 +117,25 @@ def in_own_penalty_area(world: World, p: Player) -> bool:
     return abs(p.x - own_goal_x) <= prm.penalty_area_length and abs(p.y) <= prm.penalty_area_width / 2
 
 
+def _advance(obj, rand: float, decay: float, rng: random.Random) -> None:
+    """One cycle of motion for the ball or a player: noise on the velocity, move, decay."""
+    speed = math.hypot(obj.vx, obj.vy)
+    if speed > 0.0:
+        noise = rand * speed
+        obj.vx += rng.uniform(-noise, noise)
+        obj.vy += rng.uniform(-noise, noise)
+    obj.x += obj.vx
+    obj.y += obj.vy
+    obj.vx *= decay
+    obj.vy *= decay
+
+
 def move_objects(world: World, rng: random.Random) -> None:
     """Advance ball and players one cycle: position += velocity, velocity decays, with noise."""
     prm = world.params
-    b = world.ball
-    speed = math.hypot(b.vx, b.vy)
-    if speed > 0.0:
-        noise = prm.ball_rand * speed
-        b.vx += rng.uniform(-noise, noise)
-        b.vy += rng.uniform(-noise, noise)
-    b.x += b.vx
-    b.y += b.vy
-    b.vx *= prm.ball_decay
-    b.vy *= prm.ball_decay
+    _advance(world.ball, prm.ball_rand, prm.ball_decay, rng)
     for p in world.players.values():
-        speed = math.hypot(p.vx, p.vy)
-        if speed > 0.0:
-            noise = prm.player_rand * speed
-            p.vx += rng.uniform(-noise, noise)
-            p.vy += rng.uniform(-noise, noise)
-        p.x += p.vx
-        p.y += p.vy
-        p.vx *= prm.player_decay
-        p.vy *= prm.player_decay
+        _advance(p, prm.player_rand, prm.player_decay, rng)
         p.stamina = min(prm.stamina_max, p.stamina + prm.stamina_inc_max)
     collide(world)
 
