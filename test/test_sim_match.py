@@ -74,7 +74,9 @@ def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, t
     action_name = decision.provider("Action", team=team, player_number=2)
 
     # The perception answers in the Framework Language.
-    perception = decision.provider("WorldModel", team=team, player_number=2)
+    perception = probe.spin_until(
+        lambda: decision.provider("WorldModel", team=team, player_number=2), timeout=60, what="a perception provider"
+    )
     future = decision.request(perception, "(val Game)", protocol="fipa-query", timeout=5)
     probe.spin_until(future.done, what="perception answer")
     assert future.result().ok and future.result().content.startswith("(Game :time")

@@ -428,6 +428,8 @@ class Agent:
         subscription). For ``fipa-subscribe`` the future resolves when the
         subscription ends; use :meth:`cancel` to end it.
         """
+        if not valid_agent_name(receiver):
+            raise ValueError(f"not an agent name: {receiver!r} (did a lookup find no provider?)")
         conv, first = protocols.initiate(
             protocol, me=self.me, peer=AgentId(receiver), content=content, now=time.monotonic(), timeout=timeout
         )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pytest
 from rclpy.parameter import Parameter
 from std_msgs.msg import String
 
@@ -97,6 +98,8 @@ def test_failure_timeout_and_unserved_protocol(ros, unique, tmp_path):
     ros.spin_until(future.done)
     assert future.result().state == "refused" and "does not serve fipa-query" in future.result().content
 
+    with pytest.raises(ValueError, match="not an agent name"):
+        client.request(None, "(exec Player kick)")  # e.g. a lookup that found no provider
     future = client.request("nobody_home", "(exec Player kick)", timeout=0.3)
     ros.spin_until(future.done)
     assert future.result().state == "timed-out" and future.result().message is None
