@@ -28,8 +28,8 @@ import rclpy  # noqa: E402
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy  # noqa: E402
 from std_msgs.msg import String  # noqa: E402
 
+from cf_commag.client import make_executor  # noqa: E402
 from cf_commag.gateway_client import GatewayClient  # noqa: E402
-from cf_commag.gateway_node import make_executor  # noqa: E402
 from cf_system import Processes, start_commag, start_gateway  # noqa: E402
 
 QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)

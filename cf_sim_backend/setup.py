@@ -28,6 +28,8 @@ setup(
             "sim = cf_sim_backend.sim_node:main",
             "perception = cf_sim_backend.perception_node:main",
             "action = cf_sim_backend.action_node:main",
+            "rcss_player = cf_sim_backend.rcss_player_node:main",
+            "rcss_team = cf_sim_backend.rcss_team:main",
         ]
     },
 )

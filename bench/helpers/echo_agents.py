@@ -13,8 +13,7 @@ import rclpy
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import String
 
-from cf_commag.client import Agent
-from cf_commag.gateway_node import make_executor
+from cf_commag.client import Agent, make_executor
 from cf_lang.acl import AclMessage, Performative
 
 QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)

@@ -328,14 +328,14 @@ class Agent:
         Returns a future that is done once the ComMAg answered (spin until it
         is done to be sure), or None if there was nothing to deregister. A
         renewal still in flight is answered first, so it cannot re-register
-        us after the deregistration.
+        us after the deregistration. Call :meth:`flush` afterwards to deliver
+        what is still queued (deregistering first: a slow flush must not cost
+        the lease and get a process that is exiting relaunched).
         """
         if self._closed:
             return None
         self._closed = True
         done = Future()
-        with contextlib.suppress(RCLError):
-            self.flush(timeout=2.0)
         try:
             for timer in self._timers:
                 self.node.destroy_timer(timer)
@@ -579,7 +579,8 @@ def spin(node: Node, agents: Iterable[Agent] = (), *, executor=None) -> None:
         if executor is None:
             rclpy.spin(node)
         else:
-            executor.spin()
+            while rclpy.ok():  # spin_once in a loop: EventsExecutor.spin() was seen to hang on shutdown
+                executor.spin_once(timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
@@ -589,9 +590,28 @@ def spin(node: Node, agents: Iterable[Agent] = (), *, executor=None) -> None:
             future = agent.close()
             if future is not None:
                 with contextlib.suppress(Exception):  # shutting down anyway
-                    rclpy.spin_until_future_complete(node, future, timeout_sec=1.0)
+                    if executor is None:
+                        rclpy.spin_until_future_complete(node, future, timeout_sec=1.0)
+                    else:
+                        executor.spin_until_future_complete(future, timeout_sec=1.0)
+        for agent in agents:
+            with contextlib.suppress(RCLError):
+                agent.flush(timeout=2.0)
         node.destroy_node()
         rclpy.try_shutdown()
+
+
+def make_executor(kind: str):
+    """The executor a node asked for: ``events`` (faster, experimental in Jazzy) or ``single``."""
+    if kind == "events":
+        from rclpy.experimental import EventsExecutor
+
+        return EventsExecutor()
+    if kind == "single":
+        from rclpy.executors import SingleThreadedExecutor
+
+        return SingleThreadedExecutor()
+    raise ValueError(f"executor must be 'events' or 'single', not {kind!r}")
 
 
 def init(args: list[str] | None = None) -> None:

@@ -68,6 +68,7 @@ class CommagConfig(BaseModel):
     log_dir: str = Field("", description="component output logs; empty = <ROS_HOME>/log/cf_commag")
     publish_renewals: bool = Field(False, description="also publish an event for every plain renewal")
     diagnostics_period: float = Field(1.0, gt=0, description="seconds between /diagnostics messages")
+    stop_launched_on_exit: bool = Field(False, description="kill the processes it launched when it exits")
 
 
 class CommagNode(LifecycleNode):
@@ -97,6 +98,7 @@ class CommagNode(LifecycleNode):
         self._timers = []
         self._services = []
         self._store_path: Path | None = None
+        self._saver: store.Saver | None = None
         self._last_diag = 0.0
 
     # ---- lifecycle ---------------------------------------------------------
@@ -170,7 +172,7 @@ class CommagNode(LifecycleNode):
         for timer in self._timers:
             self.destroy_timer(timer)
         self._timers = []
-        self._save()
+        self.close_store()
         return super().on_deactivate(state)
 
     def on_cleanup(self, state: LifecycleState) -> TransitionCallbackReturn:
@@ -184,7 +186,7 @@ class CommagNode(LifecycleNode):
 
     def on_shutdown(self, state: LifecycleState) -> TransitionCallbackReturn:
         self._active = False
-        self._save()
+        self.close_store()
         return TransitionCallbackReturn.SUCCESS
 
     # ---- services ----------------------------------------------------------
@@ -253,13 +255,29 @@ class CommagNode(LifecycleNode):
             self._publish_snapshot()
 
     def _save(self) -> None:
+        """Hand the registry to the saver thread (a slow disk must not delay renewals past their lease)."""
         if self._registry is None or self._store_path is None:
             return
-        try:
-            store.save(self._store_path, self._registry.dump())
-            self._registry.changed = False
-        except OSError as exc:
-            self.get_logger().error(f"cannot save the registry: {exc}", throttle_duration_sec=10.0)
+        if self._saver is None:
+            self._saver = store.Saver(self._store_path, on_error=self._on_save_error)
+        self._saver.save(self._registry.dump())
+        self._registry.changed = False
+
+    def _on_save_error(self, exc: OSError) -> None:
+        self.get_logger().error(f"cannot save the registry: {exc}", throttle_duration_sec=10.0)
+
+    def stop_launched(self) -> None:
+        """Kill what this ComMAg launched, if configured to (a team that ends with its ComMAg)."""
+        cfg = getattr(self, "_cfg", None)  # set by on_configure
+        if self._launcher is not None and cfg is not None and cfg.stop_launched_on_exit:
+            self._launcher.stop_all()
+
+    def close_store(self) -> None:
+        """Write the last state and stop the saver (at exit)."""
+        self._save()
+        if self._saver is not None:
+            self._saver.close()
+            self._saver = None
 
     def _publish_snapshot(self) -> None:
         msg = RegistryMsg(stamp=self.get_clock().now().to_msg())
@@ -314,7 +332,8 @@ def main(args: list[str] | None = None) -> int:
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
-        node._save()
+        node.close_store()
+        node.stop_launched()
         node.destroy_node()
         rclpy.try_shutdown()
     return 0

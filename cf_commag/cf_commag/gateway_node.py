@@ -12,7 +12,7 @@ from pathlib import Path
 
 import rclpy
 from rcl_interfaces.msg import ParameterDescriptor
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import String
 
@@ -20,7 +20,7 @@ from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.msg import RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 
-from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic
+from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic, make_executor
 from .commag_node import EVENTS_QOS
 from .convert import directory_from_msg, entry_from_msg, query_to_request, to_msg
 from .gateway import Gateway, GatewayConfig, form
@@ -229,17 +229,6 @@ class GatewayNode(Node):
         asyncio.run_coroutine_threadsafe(self.gateway.stop(), self.loop).result(timeout=5)
         self.loop.call_soon_threadsafe(self.loop.stop)
         self._thread.join(timeout=5)
-
-
-def make_executor(kind: str):
-    """The executor a node asked for: ``events`` (faster, experimental in Jazzy) or ``single``."""
-    if kind == "events":
-        from rclpy.experimental import EventsExecutor
-
-        return EventsExecutor()
-    if kind == "single":
-        return SingleThreadedExecutor()
-    raise ValueError(f"executor must be 'events' or 'single', not {kind!r}")
 
 
 def main(args: list[str] | None = None) -> int:

@@ -68,6 +68,7 @@ class Launcher:
     log_dir: Path
     env: dict[str, str] | None = None
     _children: dict[str, _Child] = field(default_factory=dict)
+    _dying: list[subprocess.Popen] = field(default_factory=list)  # killed, not reaped yet
 
     def launch(self, name: str, argv: tuple[str, ...]) -> int:
         """Start ``argv`` for component ``name``; return its pid or raise LaunchError."""
@@ -95,6 +96,7 @@ class Launcher:
 
     def poll(self) -> list[tuple[str, int]]:
         """Reap children that exited; return (component name, return code) for each."""
+        self._dying = [proc for proc in self._dying if proc.poll() is None]
         exited = []
         for name, child in list(self._children.items()):
             code = child.proc.poll()
@@ -114,11 +116,16 @@ class Launcher:
             return
         with contextlib.suppress(ProcessLookupError):
             os.killpg(child.proc.pid, signal.SIGKILL)
-        child.proc.wait(timeout=5)
+        # Reaped by poll(), not waited for here: the ComMAg must not stall while the kernel tears it down.
+        self._dying.append(child.proc)
 
     def stop_all(self) -> None:
         for name in list(self._children):
             self.kill(name)
+        for proc in self._dying:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                proc.wait(timeout=5)
+        self._dying = []
 
 
 def workspace_roots() -> tuple[str, ...]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+import threading
 from pathlib import Path
 
 FORMAT_VERSION = 1
@@ -44,3 +45,48 @@ def load(path: Path) -> list[dict]:
     if not isinstance(data, dict) or data.get("version") != FORMAT_VERSION:
         raise ValueError(f"{path}: unknown registry format")
     return list(data.get("components", []))
+
+
+class Saver:
+    """Saves in a thread of its own, so a slow disk never holds up the ComMAg's answers.
+
+    :meth:`save` only hands over the latest state; the thread writes the newest one it has (states
+    handed over while it writes are merged into one write). :meth:`close` writes what is left
+    and waits. Errors go to ``on_error``.
+    """
+
+    def __init__(self, path: Path, on_error=None):
+        self.path = path
+        self._on_error = on_error or (lambda exc: None)
+        self._latest: list[dict] | None = None
+        self._cond = threading.Condition()
+        self._closed = False
+        self.writes = 0
+        self._thread = threading.Thread(target=self._run, name="registry-saver", daemon=True)
+        self._thread.start()
+
+    def save(self, entries: list[dict]) -> None:
+        with self._cond:
+            self._latest = entries
+            self._cond.notify()
+
+    def _run(self) -> None:
+        while True:
+            with self._cond:
+                while self._latest is None and not self._closed:
+                    self._cond.wait()
+                entries, self._latest = self._latest, None
+                if entries is None:
+                    return  # closed with nothing left to write
+            try:
+                save(self.path, entries)
+                self.writes += 1
+            except OSError as exc:
+                self._on_error(exc)
+
+    def close(self, timeout: float = 5.0) -> None:
+        """Write what is pending, then stop the thread."""
+        with self._cond:
+            self._closed = True
+            self._cond.notify()
+        self._thread.join(timeout)

@@ -11,7 +11,7 @@ import pytest
 
 from cf_commag.launcher import Launcher, LaunchPolicy
 from cf_commag.registry import LaunchError
-from cf_commag.store import load, save
+from cf_commag.store import Saver, load, save
 
 
 @pytest.fixture
@@ -83,7 +83,14 @@ def test_relaunch_kills_the_previous_instance(workspace: Path):
     launcher = Launcher(LaunchPolicy(allowed_roots=(str(workspace / "install"),)), log_dir=workspace / "logs")
     first = launcher.launch("comp", (str(sleeper),))
     second = launcher.launch("comp", (str(sleeper),))
-    assert first != second and not Path(f"/proc/{first}").exists()
+    assert first != second
+    for _ in range(500):  # killed at once, reaped by a later poll (kill does not wait)
+        launcher.poll()
+        if not Path(f"/proc/{first}").exists():
+            break
+        time.sleep(0.01)
+    assert not Path(f"/proc/{first}").exists()
+    assert launcher.pid("comp") == second
     launcher.stop_all()
     assert not Path(f"/proc/{second}").exists()
 
@@ -97,3 +104,24 @@ def test_store_round_trip_and_corruption(tmp_path: Path):
     path.write_text("{not json")
     with pytest.raises(ValueError, match="not valid JSON"):
         load(path)
+
+
+def test_saver_writes_the_latest_state_in_its_own_thread(tmp_path: Path):
+    path = tmp_path / "registry.json"
+    errors = []
+    saver = Saver(path, on_error=errors.append)
+    for i in range(50):
+        saver.save([{"record": {"name": f"c{i}"}, "state": "healthy"}])
+    saver.close()
+    assert [e["record"]["name"] for e in load(path)] == ["c49"]  # the newest state won
+    assert 1 <= saver.writes <= 50 and not errors
+
+
+def test_saver_reports_a_disk_error_and_goes_on(tmp_path: Path):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    errors = []
+    saver = Saver(blocker / "registry.json", on_error=errors.append)  # its parent is a file
+    saver.save([])
+    saver.close()
+    assert errors and isinstance(errors[0], OSError)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import random
 import sys
 
@@ -42,6 +43,21 @@ def evaluate(val: Val, state: WorldState) -> str:
     raise Refuse(f"{val.cls} has no attribute {val.attribute}")
 
 
+def inform_subscribers(subscribers: list[tuple[Responder, Val]], state: WorldState) -> list[tuple[Responder, Val]]:
+    """Tell every open subscription its value in ``state``; returns the ones still open.
+
+    A value not perceived this cycle (e.g. the ball out of view) is skipped, not the subscription.
+    """
+    alive = []
+    for responder, val in subscribers:
+        if not responder.open:
+            continue
+        with contextlib.suppress(Refuse, Failure):
+            responder.inform(evaluate(val, state))
+        alive.append((responder, val))
+    return alive
+
+
 def _find_player(state: WorldState, key: dict):
     number, team = key.get("playerNumber"), key.get("whichTeam")
     if state.me is not None and state.me.player_number == number and team.value == "our":
@@ -72,16 +88,7 @@ class PerceptionNode(PlayerComponentNode):
 
     def on_cycle(self, world: World) -> None:
         self.state = observe(world, self.side, self.number, self.rng, noise=float(self.p["noise"]))
-        alive = []
-        for responder, val in self.subscribers:
-            if not responder.open:
-                continue
-            try:
-                responder.inform(evaluate(val, self.state))
-            except (Refuse, Failure):
-                continue  # not perceived this cycle: nothing to say
-            alive.append((responder, val))
-        self.subscribers = alive
+        self.subscribers = inform_subscribers(self.subscribers, self.state)
 
     def _val(self, msg: AclMessage) -> Val:
         expr = parse_expr(msg.content or "")

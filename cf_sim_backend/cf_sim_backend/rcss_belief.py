@@ -1,0 +1,389 @@
+"""What one rcssserver player knows (ROS-free): itself, the ball, the others and the game, with uncertainty and ages.
+
+A :class:`Belief` reads every server message (init, params, sense_body, see, hear) and keeps:
+
+- its own pose, localised from the flags of each ``see`` and carried between sees by the sensed speed
+  and the turns it commanded (the uncertainty grows while it is not seen);
+- the ball, placed from the latest sighting (velocity from the server's distance/direction change when
+  it gives one), rolled on with the ball's decay while not seen; its age counts cycles since seen;
+- the other players by team and number (anonymous sightings live for one see), kept with growing
+  uncertainty until :data:`PLAYER_MEMORY` cycles old;
+- the play mode (referee) and the score.
+
+It speaks two frames. The server's: y towards the bottom side line, angles positive clockwise. The
+embedded simulator's absolute frame (:mod:`world`), which the shared skills use: x as the server's, y
+and angles mirrored. :meth:`Belief.world` gives a :class:`World` for the skills;
+:func:`world_state` gives what the perception service tells, in the player's own frame.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from cf_lang.ontology import (
+    AbsolutePositioning,
+    Ball,
+    Game,
+    Player,
+    RelativePositioning,
+    Team,
+    Velocity,
+    WorldState,
+)
+
+from .localise import localise
+from .perception import relative_mode, to_own_frame, yaw_in_own_frame
+from .rcss_protocol import read_see
+from .world import Ball as SimBall
+from .world import Params, Side, World, norm_deg
+from .world import Player as SimPlayer
+
+PLAYER_MEMORY = 30  # cycles a player not seen again is still reported
+BALL_MEMORY = 100  # cycles the ball's estimate is still reported
+SELF_SIGMA_GROWTH = 0.1  # m per cycle without a see
+BALL_SIGMA_GROWTH = 0.2
+PLAYER_SIGMA_GROWTH = 0.4
+QUANT = 0.05  # relative distance error of moving objects (the server rounds log(distance) to 0.1)
+
+# rcssserver play modes the embedded simulator's names do not have, as the nearest of those.
+_FOUL = ("free_kick_fault", "back_pass", "catch_fault", "foul_charge", "foul_push", "foul_multiple_attacker")
+_FOR_SIDE = ("indirect_free_kick", "goalie_catch_ball", "penalty_setup", "penalty_ready", "penalty_taken")
+
+
+def sim_mode(mode: str) -> str:
+    """An rcssserver play mode as the embedded simulator names it (absolute _l/_r kept)."""
+    if mode.startswith("goal_l_") or mode.startswith("goal_r_"):
+        return mode[:6]
+    base, _, who = mode.rpartition("_")
+    if who in ("l", "r"):
+        if base in _FOUL:
+            return f"free_kick_{'r' if who == 'l' else 'l'}"
+        if base in _FOR_SIDE:
+            return f"free_kick_{who}"
+        if base.startswith("penalty"):
+            return "play_on"
+        return mode
+    if mode in ("time_up", "time_extended", "time_up_without_a_team"):
+        return "time_over"
+    return mode
+
+
+def _num(value) -> float | str:
+    return float(value) if isinstance(value, (int, float)) else str(value)
+
+
+@dataclass
+class Track:
+    """An object's estimate in the server's frame: position, velocity (m/cycle), sigma (m), last cycle seen."""
+
+    x: float
+    y: float
+    vx: float = 0.0
+    vy: float = 0.0
+    sigma: float = 0.1
+    seen: int = 0
+    body: float | None = None  # degrees, server frame
+    goalie: bool = False
+
+
+@dataclass
+class Self:
+    """The player's own state, server frame."""
+
+    x: float = 0.0
+    y: float = 0.0
+    vx: float = 0.0
+    vy: float = 0.0
+    body: float = 0.0
+    neck: float = 0.0  # relative to the body, server frame
+    stamina: float = 8000.0
+    sigma: float = 50.0  # nothing known before the first see
+    sigma_head: float = 180.0
+    localised: int = -1  # cycle of the last see that placed us
+    view_width: str = "normal"
+
+    @property
+    def head(self) -> float:
+        return norm_deg(self.body + self.neck)
+
+
+@dataclass
+class Belief:
+    """The player's belief, updated by :meth:`update` with every parsed server message."""
+
+    team: str
+    goalie: bool = False
+    side: Side | None = None
+    number: int = 0
+    time: int = 0
+    mode: str = "before_kick_off"  # the embedded simulator's names (see sim_mode)
+    server_mode: str = "before_kick_off"
+    score: dict[Side, int] = field(default_factory=lambda: {Side.LEFT: 0, Side.RIGHT: 0})
+    half: int = 1
+    server: dict[str, float | str] = field(default_factory=dict)
+    player_types: dict[int, dict[str, float | str]] = field(default_factory=dict)
+    type_id: int = 0
+    me: Self = field(default_factory=Self)
+    ball: Track | None = None
+    players: dict[tuple[str, int], Track] = field(default_factory=dict)  # (team name, number)
+    anonymous: list[tuple[str | None, Track]] = field(default_factory=list)
+    opponent: str | None = None
+    counters: dict[str, int] = field(default_factory=dict)
+    see_time: int = -1
+    sense_time: int = -1
+    errors: list[str] = field(default_factory=list)
+    pending_turn: float = 0.0  # the body turn (server degrees) commanded this cycle, applied at next sense_body
+
+    # ---- reading the server ---------------------------------------------------
+
+    def update(self, msg: list) -> str:
+        """Take one parsed server message into account; returns its kind (e.g. "see", "think")."""
+        kind = str(msg[0]) if msg else ""
+        handler = getattr(self, f"_on_{kind}", None)
+        if handler is not None:
+            handler(msg)
+        return kind
+
+    def _on_init(self, msg: list) -> None:  # (init l 1 before_kick_off)
+        if len(msg) >= 4:
+            self.side, self.number = Side(str(msg[1])), int(msg[2])
+            self._set_mode(str(msg[3]))
+
+    def _on_reconnect(self, msg: list) -> None:  # (reconnect l play_mode)
+        if len(msg) >= 3:
+            self.side = Side(str(msg[1]))
+            self._set_mode(str(msg[2]))
+
+    def _on_server_param(self, msg: list) -> None:
+        self.server.update(
+            {str(item[0]): _num(item[1]) for item in msg[1:] if isinstance(item, list) and len(item) == 2}
+        )
+
+    def _on_player_type(self, msg: list) -> None:
+        values = {str(item[0]): _num(item[1]) for item in msg[1:] if isinstance(item, list) and len(item) == 2}
+        if "id" in values:
+            self.player_types[int(values["id"])] = values
+
+    def _on_change_player_type(self, msg: list) -> None:  # (change_player_type UNUM [TYPE])
+        if len(msg) >= 3 and int(msg[1]) == self.number:
+            self.type_id = int(msg[2])
+
+    def _on_error(self, msg: list) -> None:
+        self.errors = [*self.errors[-19:], " ".join(str(x) for x in msg[1:])]
+
+    _on_warning = _on_error
+
+    def _on_hear(self, msg: list) -> None:  # (hear T referee MODE) | (hear T self "..") | (hear T dir our 3 "..")
+        if len(msg) >= 4 and str(msg[2]) == "referee":
+            self._set_mode(str(msg[3]))
+
+    def _set_mode(self, mode: str) -> None:
+        self.server_mode = mode
+        if mode.startswith(("goal_l_", "goal_r_")) and mode[7:].isdigit():
+            self.score[Side(mode[5])] = int(mode[7:])
+        if mode == "half_time":
+            self.half += 1
+        self.mode = sim_mode(mode)
+
+    def _on_sense_body(self, msg: list) -> None:
+        self.time = self.sense_time = int(msg[1])
+        parts = {str(item[0]): item[1:] for item in msg[2:] if isinstance(item, list) and item}
+        me = self.me
+        if "view_mode" in parts and len(parts["view_mode"]) == 2:
+            me.view_width = str(parts["view_mode"][1])
+        if "stamina" in parts:
+            me.stamina = float(parts["stamina"][0])
+        if "head_angle" in parts:
+            me.neck = float(parts["head_angle"][0])
+        for name in ("kick", "dash", "turn", "turn_neck", "catch", "move", "change_view", "say"):
+            if name in parts and isinstance(parts[name][0], (int, float)):
+                self.counters[name] = int(parts[name][0])
+        # Dead reckoning: the body turned as commanded; it moved by this cycle's speed before its decay.
+        me.body = norm_deg(me.body + self.pending_turn)
+        self.pending_turn = 0.0
+        if "speed" in parts and len(parts["speed"]) == 2:
+            amount, direction = (float(v) for v in parts["speed"])
+            angle = math.radians(me.head + direction)
+            me.vx, me.vy = amount * math.cos(angle), amount * math.sin(angle)
+        decay = float(self.param("player_decay", 0.4)) or 0.4
+        me.x += me.vx / decay
+        me.y += me.vy / decay
+        me.sigma += SELF_SIGMA_GROWTH
+        me.sigma_head += 1.0
+        self._roll_on()
+
+    def _roll_on(self) -> None:
+        """Carry the ball one cycle on (it decays) and grow every estimate's uncertainty."""
+        if self.ball is not None:
+            decay = float(self.server.get("ball_decay", 0.94))
+            self.ball.x += self.ball.vx
+            self.ball.y += self.ball.vy
+            self.ball.vx *= decay
+            self.ball.vy *= decay
+            self.ball.sigma += BALL_SIGMA_GROWTH
+        for track in self.players.values():
+            track.sigma += PLAYER_SIGMA_GROWTH
+        self.players = {k: t for k, t in self.players.items() if self.time - t.seen <= PLAYER_MEMORY}
+
+    def _on_see(self, msg: list) -> None:
+        see = read_see(msg)
+        self.time = self.see_time = see.time
+        me = self.me
+        pose = localise(see.flags())
+        if pose is not None:
+            me.x, me.y = pose.x, pose.y
+            me.body = norm_deg(pose.head - me.neck)
+            me.sigma, me.sigma_head, me.localised = pose.sigma_xy, max(pose.sigma_head, 0.5), see.time
+        head = math.radians(me.head)
+        self.anonymous = []
+        for obj in see.objects:
+            name = obj.name.split(" ")
+            if name[0] not in ("b", "B", "p", "P") or obj.distance is None:
+                continue
+            d, a = obj.distance, math.radians(obj.direction)
+            x, y = me.x + d * math.cos(head + a), me.y + d * math.sin(head + a)
+            sigma = me.sigma + QUANT * d
+            if name[0] in ("b", "B"):
+                vx, vy = self.ball.vx if self.ball else 0.0, self.ball.vy if self.ball else 0.0
+                if len(obj.extra) >= 2 and isinstance(obj.extra[0], float):
+                    vx, vy = _velocity(d, a, obj.extra[0], obj.extra[1], head, me)
+                self.ball = Track(x, y, vx, vy, sigma, see.time)
+                continue
+            track = Track(x, y, sigma=sigma, seen=see.time, goalie="goalie" in name)
+            numbers = [v for v in obj.extra if isinstance(v, float)]
+            if len(numbers) >= 4:  # dist change, dir change, body and head directions (relative to our head)
+                track.vx, track.vy = _velocity(d, a, numbers[0], numbers[1], head, me)
+                track.body = norm_deg(me.head + numbers[2])
+            team = name[1].strip('"') if len(name) >= 2 else None
+            if team is not None and team != self.team:
+                self.opponent = team
+            if len(name) >= 3 and name[2].isdigit():
+                self.players[(team, int(name[2]))] = track
+            else:
+                self.anonymous.append((team, track))
+
+    # ---- what others read -----------------------------------------------------
+
+    def param(self, name: str, default: float) -> float | str:
+        """A parameter of this player's type, else of the server."""
+        return self.player_types.get(self.type_id, {}).get(name, self.server.get(name, default))
+
+    def params(self) -> Params:
+        """The server's and this player type's parameters, as the shared skills read them."""
+        names = [f for f in Params.__dataclass_fields__ if f not in ("half_cycles", "halves")]
+        values = {n: float(self.param(n, getattr(Params, n))) for n in names}
+        for n in ("goal_pause_cycles", "auto_kick_off_cycles", "set_piece_timeout"):
+            values[n] = int(values[n])
+        values["field_length"], values["field_width"] = 105.0, 68.0
+        values["goal_width"] = float(self.server.get("goal_width", 14.02))
+        values["catchable_area"] = float(self.server.get("catchable_area_l", 1.2))
+        values["half_cycles"] = int(float(self.server.get("half_time", 300)) * 10)
+        return Params(**values)
+
+    def expects_see(self) -> bool:
+        """Whether a see of the current cycle is still to come (rcssserver 19: every 2 cycles at normal width)."""
+        every = {"narrow": 1, "normal": 2, "wide": 3}.get(self.me.view_width, 2)
+        return self.see_time < self.time and (self.see_time < 0 or self.time - self.see_time >= every)
+
+    def world(self) -> World:
+        """The belief as the embedded simulator's absolute frame (y and angles mirrored), for the skills."""
+        side = self.side or Side.LEFT
+        w = World(params=self.params(), time=self.time, mode=self.mode, score=dict(self.score), half=self.half)
+        me = self.me
+        w.players[(side, self.number)] = SimPlayer(
+            side, self.number, me.x, -me.y, me.vx, -me.vy, -me.body, -me.neck, me.stamina, self.goalie
+        )
+        if self.ball is not None:
+            w.ball = SimBall(self.ball.x, -self.ball.y, self.ball.vx, -self.ball.vy)
+        for (team, number), t in self.players.items():
+            whose = side if team == self.team else side.other
+            if (whose, number) not in w.players:
+                body = -t.body if t.body is not None else 0.0
+                w.players[(whose, number)] = SimPlayer(
+                    whose, number, t.x, -t.y, t.vx, -t.vy, body, 0.0, 8000.0, t.goalie
+                )
+        w.team_names = {side: self.team, side.other: self.opponent or "opponent"}
+        return w
+
+
+def _velocity(d: float, a: float, dchg: float, dirchg: float, head: float, me: Self) -> tuple[float, float]:
+    """An object's absolute velocity (server frame, m/cycle) from the see's distance and direction changes."""
+    rx, ry = math.cos(a), math.sin(a)
+    w = math.radians(dirchg) * d
+    vx, vy = dchg * rx - w * ry, dchg * ry + w * rx
+    c, s = math.cos(head), math.sin(head)
+    return (c * vx - s * vy + me.vx, s * vx + c * vy + me.vy)
+
+
+def _clip(value: float, limit: float) -> float:
+    return max(-limit, min(limit, value))
+
+
+def world_state(belief: Belief) -> WorldState:
+    """What the perception service tells: the belief in the player's own frame, with sigmas and ages."""
+    side, t = belief.side or Side.LEFT, belief.time
+    me = belief.me
+
+    def place(x: float, y: float, sigma: float, body: float | None = None) -> AbsolutePositioning:
+        ox, oy = to_own_frame(side, x, -y)
+        return AbsolutePositioning(
+            x=_clip(ox, 70.0),
+            y=_clip(oy, 50.0),
+            yaw=None if body is None else yaw_in_own_frame(side, -body),
+            sigma_x=round(sigma, 3),
+            sigma_y=round(sigma, 3),
+        )
+
+    def relative(x: float, y: float, sigma: float) -> RelativePositioning:
+        d = math.hypot(x - me.x, y - me.y)
+        direction = -norm_deg(math.degrees(math.atan2(y - me.y, x - me.x)) - me.body)
+        return RelativePositioning(distance=min(200.0, d), direction=math.radians(direction), sigma_distance=sigma)
+
+    def velocity(vx: float, vy: float) -> Velocity:
+        ovx, ovy = to_own_frame(side, vx * 10, -vy * 10)  # m/cycle -> m/s
+        return Velocity(vx=_clip(ovx, 50.0), vy=_clip(ovy, 50.0))
+
+    mine = place(me.x, me.y, me.sigma, me.body)
+    myself = Player(
+        player_number=belief.number or None,
+        which_team=Team.OUR,
+        is_goalie=belief.goalie,
+        positioning=mine.model_copy(update={"sigma_yaw": math.radians(min(me.sigma_head, 180.0))}),
+        velocity=velocity(me.vx, me.vy),
+        head_angle=math.radians(-me.neck),
+        stamina=round(min(1.0, me.stamina / float(belief.server.get("stamina_max", 8000.0))), 3),
+        age=max(0, t - me.localised) if me.localised >= 0 else None,
+    )
+    ball = None
+    if belief.ball is not None and t - belief.ball.seen <= BALL_MEMORY:
+        b = belief.ball
+        ball = Ball(
+            positioning=place(b.x, b.y, b.sigma),
+            relative=relative(b.x, b.y, b.sigma),
+            velocity=velocity(b.vx, b.vy),
+            age=max(0, t - b.seen),
+        )
+    others = []
+    tracks = [(team, number, tr) for (team, number), tr in belief.players.items()]
+    tracks += [(team, None, tr) for team, tr in belief.anonymous]
+    for team, number, tr in tracks:
+        which = None if team is None else (Team.OUR if team == belief.team else Team.OPP)
+        others.append(
+            Player(
+                player_number=number,
+                which_team=which,
+                is_goalie=tr.goalie if number is not None else None,
+                positioning=place(tr.x, tr.y, tr.sigma, tr.body),
+                relative=relative(tr.x, tr.y, tr.sigma),
+                age=max(0, t - tr.seen),
+            )
+        )
+    game = Game(
+        time=t,
+        play_mode=relative_mode(belief.mode, side),
+        score_our=belief.score[side],
+        score_opp=belief.score[side.other],
+        half=min(belief.half, 4),
+    )
+    return WorldState(time=t, me=myself, ball=ball, players=tuple(others), game=game)

@@ -1,0 +1,312 @@
+"""One player on the RoboCup 2D server (rcssserver 19): its perception and action services over UDP.
+
+``ros2 run cf_sim_backend rcss_player --ros-args -p team:=CF -p port:=6000 [-p goalie:=true]``
+
+The node connects as a player (``(init TEAM (version 19))``), and once the server has given it a
+shirt number it registers two components with the ComMAg, exactly as the embedded simulator's
+players do: ``<team>_<n>_perception`` (WorldModel: ``(val ...)`` queries and subscriptions) and
+``<team>_<n>_action`` (Action: ``(exec Player <method> ...)`` requests). A decision component
+cannot tell the two back-ends apart.
+
+Each cycle it informs the perception subscribers, then runs one step of the action in progress
+(at most one body command). In synch mode (the server sends ``(think)``) it waits up to
+``synch_wait`` seconds for a decision's new request, acts, and answers ``(done)``; in real time it
+acts on the cycle's ``see`` (or right after ``sense_body`` when no see is due this cycle).
+
+The UDP socket is read by a thread that only queues datagrams and wakes the executor (a guard
+condition), so everything else runs on the executor, as in every other component.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import socket
+import sys
+import threading
+import time
+from collections import deque
+
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.node import Node
+
+from cf_commag.client import Agent, Failure, Refuse, Responder, init, own_launch_command, spin
+from cf_lang import Exec, Val, parse_expr
+from cf_lang.acl import AclMessage
+from cf_lang.ontology import Team, WorldState
+
+from .perception_node import evaluate, inform_subscribers
+from .rcss_belief import world_state
+from .rcss_session import Session
+from .skills import SkillError, skill_for
+from .world import Side
+
+PARAMS = {
+    "host": ("127.0.0.1", "rcssserver's host"),
+    "port": (6000, "rcssserver's player port"),
+    "team": ("CommonFramework", "team name on the server (and the components' team)"),
+    "goalie": (False, "connect as the goalkeeper"),
+    "number": (0, "the shirt number to take back after a relaunch (with reconnect)"),
+    "reconnect": (False, "take over player <number> with (reconnect ...) instead of (init ...)"),
+    "version": (19, "player protocol version"),
+    "synch_wait": (0.03, "synch mode: seconds to wait for a decision's request before (done)"),
+    "see_wait": (0.015, "real time: seconds to wait for a due see after sense_body"),
+    "server_timeout": (10.0, "exit with an error when the server is silent this long (s)"),
+    "commag": ("/commag", "the ComMAg's node name"),
+    "lease": (1.0, "lease period (s) with the ComMAg"),
+    "stats_file": ("", "write the session's counters (JSON) here every 50 cycles and at exit"),
+}
+
+
+class RcssPlayerNode(Node):
+    """A player on rcssserver. Parameters: PARAMS."""
+
+    def __init__(self, **kwargs):
+        super().__init__("rcss_player", **kwargs)
+        for name, (default, description) in PARAMS.items():
+            self.declare_parameter(name, default, ParameterDescriptor(description=description))
+        self.p = {name: self.get_parameter(name).value for name in PARAMS}
+        self.session = Session(str(self.p["team"]), bool(self.p["goalie"]), int(self.p["version"]))
+        self.agents: list[Agent] = []
+        self.subscribers: list[tuple[Responder, Val]] = []
+        self.current: Responder | None = None
+        self.state: WorldState | None = None
+        self.synch = False
+        self.cycle_done = -1  # the last cycle acted on
+        self.waiting = False  # synch mode: perceived this cycle, (done) not yet sent
+        self.finished = False
+        self.last_heard = time.monotonic()
+
+        host = socket.gethostbyname(str(self.p["host"]))
+        self.server = (host, int(self.p["port"]))
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        # A loopback server needs only a loopback socket; otherwise listen where the server can answer.
+        self.sock.bind(("127.0.0.1" if host.startswith("127.") else "", 0))
+        self.queue: deque[tuple[bytes, tuple]] = deque()
+        self.wake = self.create_guard_condition(self._drain)
+        self.act_timer = self.create_timer(float(self.p["synch_wait"]), self._on_act_timer)
+        self.act_timer.cancel()
+        self.see_timer = self.create_timer(float(self.p["see_wait"]), self._on_see_timer)
+        self.see_timer.cancel()
+        self.create_timer(1.0, self._watch)
+        threading.Thread(target=self._read, name="rcss-udp", daemon=True).start()
+        self._hello()
+
+    # ---- the server -------------------------------------------------------------
+
+    def _hello(self) -> None:
+        number = int(self.p["number"])
+        text = self.session.reconnect(number) if self.p["reconnect"] and number else self.session.hello()
+        self._send(text, to=self.server)
+
+    def _send(self, text: str, to: tuple | None = None) -> None:
+        try:
+            self.sock.sendto(text.encode() + b"\0", to or self.server)
+        except OSError as exc:
+            self.get_logger().error(f"cannot send to the server: {exc}", throttle_duration_sec=5.0)
+
+    def _read(self) -> None:
+        while True:
+            try:
+                data, addr = self.sock.recvfrom(65536)
+            except OSError:
+                return  # socket closed: shutting down
+            self.queue.append((data, addr))
+            self.wake.trigger()
+
+    def _drain(self) -> None:
+        while self.queue:
+            data, addr = self.queue.popleft()
+            self._on_datagram(data, addr)
+
+    def _on_datagram(self, data: bytes, addr: tuple) -> None:
+        self.last_heard = time.monotonic()
+        joined = bool(self.agents)
+        kind = self.session.receive(data)
+        if kind in ("init", "reconnect") and not joined and self.session.ready:
+            self.server = addr  # after init the server talks from a port of its own for this player
+            self._join()
+        elif kind in ("error", "warning"):
+            self.get_logger().warning(f"server: {data.rstrip(bytes(1)).decode(errors='replace')}")
+            if not self.session.ready and b"no_more_player" in data:
+                self.get_logger().error("the server refused this player (team full, goalie taken or bad version)")
+                self.finished = True
+        elif kind == "bad":
+            self.get_logger().warning(f"unreadable server message: {self.session.belief.errors[-1]}")
+        elif kind == "think":
+            self.synch = True
+            self._perceive()
+            self.waiting = True
+            self.act_timer.reset()
+        elif kind == "sense_body" and not self.synch:
+            if self.session.belief.expects_see():
+                self.see_timer.reset()
+            else:
+                self._cycle()
+        elif kind == "see" and not self.synch:
+            self._cycle()
+        if self.session.belief.mode == "time_over" and not self.finished:
+            self.get_logger().info(f"time over: {self._score_text()}")
+            self.finished = True
+
+    def _join(self) -> None:
+        b = self.session.belief
+        team, n = self.session.team, b.number
+        self.get_logger().info(f"playing as {team} {n} on side {b.side.value}")
+        launch = [*own_launch_command(), "--ros-args", "-p", f"number:={n}", "-p", "reconnect:=true"]
+        common = {"team": team, "player_number": n, "lease": float(self.p["lease"]), "commag": self.p["commag"]}
+        perception = Agent(
+            self, name=f"{team}_{n}_perception", service_class="WorldModel", launch_command=launch, **common
+        )
+        # One process serves both; only the perception carries the launch command, so a dead process
+        # is relaunched once (the action registration comes back with it).
+        action = Agent(self, name=f"{team}_{n}_action", service_class="Action", **common)
+        perception.serve("fipa-query", self._on_query)
+        perception.serve("fipa-subscribe", self._on_subscribe)
+        action.serve("fipa-request", self._on_request)
+        self.agents.extend([perception, action])  # spin() holds this very list
+
+    def _watch(self) -> None:
+        silent = time.monotonic() - self.last_heard
+        if silent > 2.0 and not self.session.ready:
+            self._hello()  # the server may not have been up yet
+        if silent > float(self.p["server_timeout"]) and not self.finished:
+            self.get_logger().error(f"the server has been silent for {silent:.0f} s")
+            self.finished = True
+        if self.finished:
+            self._write_stats()
+            raise SystemExit(0 if self.session.ready else 2)
+
+    # ---- each cycle -----------------------------------------------------------------
+
+    def _on_see_timer(self) -> None:
+        self.see_timer.cancel()
+        self._cycle()
+
+    def _on_act_timer(self) -> None:
+        self.act_timer.cancel()
+        self.waiting = False
+        self._act()
+        self._send("(done)")
+
+    def _cycle(self) -> None:
+        self.see_timer.cancel()
+        if self.cycle_done == self.session.belief.time:
+            return
+        self._perceive()
+        self._act()
+
+    def _perceive(self) -> None:
+        if not self.session.ready:
+            return
+        self.state = world_state(self.session.belief)
+        self.subscribers = inform_subscribers(self.subscribers, self.state)
+
+    def _act(self) -> None:
+        self.cycle_done = self.session.belief.time
+        acted = self.session.act()
+        for text in acted.commands:
+            self._send(text)
+        responder = self.current
+        if responder is None or acted.status in ("idle", "running"):
+            return
+        self.current = None
+        if responder.open:
+            if acted.status == "done":
+                responder.inform(f"(done {acted.name} :cycles {acted.cycles})")
+            else:
+                responder.failure(acted.reason)
+        if self.session.stats["cycles"] % 50 == 0:
+            self._write_stats()
+
+    # ---- the services ---------------------------------------------------------------
+
+    def _val(self, msg: AclMessage) -> Val:
+        expr = parse_expr(msg.content or "")
+        if not isinstance(expr, Val):
+            raise Refuse("perception answers (val ...) expressions only")
+        return expr
+
+    def _on_query(self, msg: AclMessage, responder: Responder) -> str:
+        val = self._val(msg)
+        if self.state is None:
+            raise Failure("no perception yet: the server has not sent a cycle")
+        return evaluate(val, self.state)
+
+    def _on_subscribe(self, msg: AclMessage, responder: Responder) -> None:
+        val = self._val(msg)
+        responder.agree()
+        self.subscribers.append((responder, val))
+
+    def _on_request(self, msg: AclMessage, responder: Responder) -> None:
+        expr = parse_expr(msg.content or "")
+        b = self.session.belief
+        if not isinstance(expr, Exec) or expr.cls != "Player":
+            raise Refuse("this action component executes (exec Player <method> ...) only")
+        if expr.key.get("playerNumber") != b.number or expr.key.get("whichTeam") is not Team.OUR:
+            number, team = expr.key.get("playerNumber"), expr.key.get("whichTeam")
+            raise Refuse(f"I act for our player {b.number}, not {team.value if team else '?'} player {number}")
+        world = b.world()
+        try:
+            skill = skill_for(expr.method, expr.action, b.side or Side.LEFT, world, world.player(b.side, b.number))
+        except SkillError as exc:
+            raise Refuse(str(exc)) from None
+        if self.current is not None and self.current.open:
+            self.current.failure("replaced by a newer request")
+        responder.agree()
+        self.current = responder
+        self.session.start(skill)
+        if self.waiting:
+            # The decision answered this cycle's perception: act now rather than wait out synch_wait.
+            self.act_timer.cancel()
+            self._on_act_timer()
+
+    def _score_text(self) -> str:
+        b = self.session.belief
+        side = b.side or Side.LEFT
+        return f"{b.team} {b.score[side]} : {b.score[side.other]} {b.opponent or 'opponent'}"
+
+    def _write_stats(self) -> None:
+        path = self.p["stats_file"]
+        if not path:
+            return
+        b = self.session.belief
+        data = {
+            **self.session.stats,
+            "team": b.team,
+            "number": b.number,
+            "side": b.side.value if b.side else None,
+            "time": b.time,
+            "mode": b.mode,
+            "kicks": b.counters.get("kick", 0),
+            "score": [b.score[Side.LEFT], b.score[Side.RIGHT]],
+            "server_errors": b.errors[-5:],
+            "synch": self.synch,
+        }
+        tmp = f"{path}.tmp"
+        with open(tmp, "w") as f:
+            json.dump(data, f)
+        os.replace(tmp, path)
+
+    def close(self) -> None:
+        self._write_stats()
+        if self.session.ready:
+            self._send("(bye)")
+        self.sock.close()
+
+
+def main() -> int:
+    """Entry point of ``ros2 run cf_sim_backend rcss_player``."""
+    init(args=sys.argv)
+    node = RcssPlayerNode()
+    try:
+        spin(node, node.agents)  # the default executor: the events one has no guard conditions (Jazzy)
+    except SystemExit as exc:
+        return int(exc.code or 0)
+    finally:
+        node.close()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

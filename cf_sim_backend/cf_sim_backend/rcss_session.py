@@ -1,0 +1,159 @@
+"""One player's conversation with rcssserver (ROS-free): the belief, the skill in progress, the commands it sends.
+
+The session turns server messages into the :class:`Belief` and, once per cycle (:meth:`Session.act`),
+the current skill's step into rcssserver commands: at most one body command per cycle (the server
+ignores extras), plus ``turn_neck``. Skills are the embedded simulator's (:mod:`skills`), run on
+the belief, so the same Framework Language actions mean the same on both back-ends.
+It also counts what a benchmark needs: cycles, body commands sent, and those the server executed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+from cf_lang.errors import LanguageError
+
+from .rcss_belief import Belief
+from .rcss_protocol import parse
+from .skills import Command, Skill
+from .world import Side
+
+BODY_COMMANDS = frozenset({"move", "dash", "turn", "kick", "catch", "tackle"})
+_EXECUTED = ("kick", "dash", "turn", "move", "catch")  # sense_body counters of body commands
+_SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
+
+
+def _n(value: float) -> str:
+    """A number as the server reads it: at most 2 decimals, no exponent."""
+    text = f"{value:.2f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def rcss_command(cmd: Command) -> str | None:
+    """A skill's command (embedded simulator's frame: y and angles mirrored) as rcssserver text, or None."""
+    name, args = cmd[0], cmd[1:]
+    if name == "dash":
+        return f"(dash {_n(args[0])})" if len(args) < 2 or args[1] == 0 else f"(dash {_n(args[0])} {_n(-args[1])})"
+    if name in ("turn", "turn_neck", "catch"):
+        return f"({name} {_n(-args[0])})"
+    if name == "kick":
+        return f"(kick {_n(args[0])} {_n(-args[1])})"
+    if name == "tackle":
+        return f"(tackle {_n(args[0])})"
+    if name == "move":  # own-half coordinates as for the left side: the server mirrors them for the right
+        return f"(move {_n(args[0])} {_n(-args[1])})"
+    if name == "say" and args:
+        text = _SAY_CHARS.sub("", str(args[0]))[:10]
+        return f'(say "{text}")' if text else None
+    return None
+
+
+@dataclass
+class Acted:
+    """What one cycle's act produced: the commands to send and the skill's status."""
+
+    commands: list[str] = field(default_factory=list)
+    status: str = "idle"  # idle | running | done | failed
+    reason: str = ""
+    name: str = ""  # the skill's
+    cycles: int = 0
+
+
+@dataclass
+class Session:
+    """A player's session. Parameters: team name, goalie, protocol version."""
+
+    team: str
+    goalie: bool = False
+    version: int = 19
+    belief: Belief = field(init=False)
+    skill: Skill | None = None
+    acted: int = -1  # the last cycle a body command went out
+    stats: dict[str, int] = field(
+        default_factory=lambda: {"cycles": 0, "body_commands": 0, "executed": 0, "bad_messages": 0}
+    )
+    _counted: int = field(default=-1, init=False)
+
+    def __post_init__(self) -> None:
+        self.belief = Belief(self.team, self.goalie)
+
+    # ---- messages ---------------------------------------------------------------
+
+    def hello(self) -> str:
+        return f"(init {self.team} (version {self.version}){' (goalie)' if self.goalie else ''})"
+
+    def reconnect(self, number: int) -> str:
+        """Take player ``number`` back (after a relaunch); the server answers (reconnect SIDE MODE)."""
+        self.belief.number = int(number)
+        return f"(reconnect {self.team} {int(number)})"
+
+    def receive(self, data: bytes | str) -> str:
+        """Take one datagram; returns its kind ("see", "think", ...), or "bad" if it does not parse."""
+        try:
+            msg = parse(data)
+        except (LanguageError, UnicodeDecodeError) as exc:
+            self.stats["bad_messages"] += 1
+            self.belief.errors = [*self.belief.errors[-19:], f"unreadable message: {exc}"]
+            return "bad"
+        if not isinstance(msg, list) or not msg:
+            self.stats["bad_messages"] += 1
+            return "bad"
+        before = sum(self.belief.counters.get(k, 0) for k in _EXECUTED)
+        kind = self.belief.update(msg)
+        if kind == "sense_body" and self.belief.time != self._counted:
+            self._counted = self.belief.time
+            self.stats["cycles"] += 1
+            after = sum(self.belief.counters.get(k, 0) for k in _EXECUTED)
+            if self.stats["cycles"] > 1:
+                self.stats["executed"] += max(0, after - before)
+        return kind
+
+    @property
+    def ready(self) -> bool:
+        """Whether the server has told us who we are."""
+        return self.belief.side is not None and self.belief.number > 0
+
+    # ---- acting -----------------------------------------------------------------
+
+    def start(self, skill: Skill | None) -> None:
+        """Carry out ``skill`` from the next :meth:`act` on (replacing the current one)."""
+        self.skill = skill
+
+    def act(self) -> Acted:
+        """This cycle's commands: the current skill's step, at most one body command, once per cycle."""
+        b = self.belief
+        if self.skill is None or not self.ready or self.acted == b.time:
+            return Acted()
+        world = b.world()
+        me = world.player(b.side, b.number)
+        step = self.skill.step(world, me)
+        out, body_sent = [], False
+        for cmd in step.commands:
+            text = rcss_command(cmd)
+            if text is None:
+                continue
+            if cmd[0] in BODY_COMMANDS:
+                if body_sent:
+                    continue  # the server would ignore it: keep the first
+                body_sent = True
+                self._predict(cmd)
+            out.append(text)
+        if body_sent:
+            self.acted = b.time
+            self.stats["body_commands"] += 1
+        skill = self.skill
+        if step.status != "running":
+            self.skill = None
+        return Acted(out, step.status, step.reason, skill.name, skill.cycles)
+
+    def _predict(self, cmd: Command) -> None:
+        """What a body command will do to our own pose, for dead reckoning until the next see."""
+        b, me = self.belief, self.belief.me
+        if cmd[0] == "turn":
+            inertia = float(b.param("inertia_moment", 5.0))
+            b.pending_turn = -cmd[1] / (1.0 + inertia * math.hypot(me.vx, me.vy))
+        elif cmd[0] == "move":
+            sign = 1 if b.side is Side.LEFT else -1
+            me.x, me.y, me.vx, me.vy = cmd[1] * sign, -cmd[2] * sign, 0.0, 0.0

@@ -1,0 +1,158 @@
+"""Our whole team on a running rcssserver: the ComMAg, 11 rcss_player adapters and 11 cf_decision components.
+
+    ros2 run cf_sim_backend rcss_team -- --team CF --port 6000 [--players 11] [--no-commag] [--log-dir DIR]
+
+(on the bare machine: ``install/cf_sim_backend/lib/cf_sim_backend/rcss_team --team CF``).
+
+rcssserver gives shirt numbers in the order players connect, so the adapters start one after
+another: each next one once the previous has its number (its perception registered with the
+ComMAg); number 1 connects as the goalkeeper. Then the decision components start, one per
+player, unchanged from the embedded simulator's team. It runs until the server's match is over
+(every adapter has exited) or until Ctrl-C, then stops everything it started.
+"""
+
+from __future__ import annotations
+
+import argparse
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import rclpy
+from ament_index_python.packages import get_package_prefix
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.signals import SignalHandlerOptions
+
+from cf_commag.client import SNAPSHOT_QOS
+from cf_interfaces.msg import Registry
+
+
+def executable(package: str, name: str) -> str:
+    return str(Path(get_package_prefix(package)) / "lib" / package / name)
+
+
+def parse_args(argv: list[str]) -> argparse.Namespace:
+    ap = argparse.ArgumentParser(prog="rcss_team", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--team", default="CommonFramework", help="team name on the server")
+    ap.add_argument("--host", default="127.0.0.1")
+    ap.add_argument("--port", type=int, default=6000, help="the server's player port")
+    ap.add_argument("--players", type=int, default=11, help="how many players (1..11)")
+    ap.add_argument("--commag", default="/commag", help="the ComMAg's node name")
+    ap.add_argument("--no-commag", action="store_true", help="use a ComMAg that is already running")
+    ap.add_argument("--log-dir", default="", help="one log file per process (default: a new temp dir)")
+    ap.add_argument("--stats-dir", default="", help="each adapter writes its counters here (JSON)")
+    ap.add_argument(
+        "--lease", type=float, default=3.0, help="lease (s) of every component (22 processes share the CPU)"
+    )
+    ap.add_argument(
+        "--synch-wait", type=float, default=0.1, help="synch mode: each adapter's wait for its decision (s)"
+    )
+    ap.add_argument("--join-timeout", type=float, default=30.0, help="seconds each adapter may take to join")
+    return ap.parse_args(argv)
+
+
+class Team:
+    """The processes of one team, started in order and stopped together."""
+
+    def __init__(self, args: argparse.Namespace):
+        self.args = args
+        self.logs = Path(args.log_dir or tempfile.mkdtemp(prefix=f"rcss-team-{args.team}-"))
+        self.logs.mkdir(parents=True, exist_ok=True)
+        self.procs: dict[str, subprocess.Popen] = {}
+        self.registered: set[str] = set()
+        rclpy.init(signal_handler_options=SignalHandlerOptions.NO)  # our handlers stop the children first
+        self.node = rclpy.create_node(f"rcss_team_{args.team.lower()}")
+        self.node.create_subscription(Registry, f"{args.commag}/registry", self._on_registry, SNAPSHOT_QOS)
+        self.executor = SingleThreadedExecutor()
+        self.executor.add_node(self.node)
+
+    def _on_registry(self, msg: Registry) -> None:
+        self.registered = {c.name for c in msg.records}
+
+    def start(self, name: str, argv: list[str]) -> None:
+        log = open(self.logs / f"{name}.log", "ab")  # noqa: SIM115 - the child writes it
+        self.procs[name] = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+        log.close()
+
+    def wait_for(self, name: str, process: str, timeout: float) -> None:
+        deadline = time.monotonic() + timeout
+        while name not in self.registered:
+            if self.procs[process].poll() is not None:
+                raise RuntimeError(f"{process} exited with {self.procs[process].returncode}: see {self.logs}")
+            if time.monotonic() > deadline:
+                raise RuntimeError(f"{name} did not register in {timeout:.0f} s: see {self.logs}")
+            self.executor.spin_once(timeout_sec=0.1)
+
+    def run(self) -> int:
+        a = self.args
+        ros = ["--ros-args", "-p"]
+        if not a.no_commag:
+            node = a.commag.strip("/")
+            argv = [executable("cf_commag", "commag"), "--ros-args", "-r", f"__node:={node}"]
+            # A fresh registry per match: components of an earlier match must not be relaunched.
+            argv += ["-p", f"persistence_path:={self.logs / 'registry.json'}", "-p", f"log_dir:={self.logs}"]
+            argv += ["-p", "stop_launched_on_exit:=true"]  # relaunched components end with the team
+            self.start("commag", argv)
+        for n in range(1, a.players + 1):
+            stats = ["-p", f"stats_file:={Path(a.stats_dir) / f'{a.team}_{n}.json'}"] if a.stats_dir else []
+            argv = [executable("cf_sim_backend", "rcss_player"), *ros, f"team:={a.team}", "-p", f"host:={a.host}"]
+            argv += ["-p", f"port:={a.port}", "-p", f"commag:={a.commag}", "-p", f"goalie:={str(n == 1).lower()}"]
+            argv += ["-p", f"lease:={a.lease}", "-p", f"synch_wait:={a.synch_wait}"]
+            self.start(f"{a.team}_{n}_rcss_player", argv + stats)
+            self.wait_for(f"{a.team}_{n}_perception", f"{a.team}_{n}_rcss_player", a.join_timeout)
+            print(f"player {n} joined", flush=True)
+        for n in range(1, a.players + 1):
+            argv = [executable("cf_decision", "decision"), *ros, f"team:={a.team}", "-p", f"number:={n}"]
+            argv += ["-p", f"team_size:={a.players}", "-p", f"commag:={a.commag}", "-p", f"lease:={a.lease}"]
+            argv += ["-r", f"__node:=decision_{n}"]
+            # One after another too: eleven Python processes starting at once starve the running adapters.
+            self.start(f"{a.team}_{n}_decision", argv)
+            self.wait_for(f"{a.team}_{n}_decision", f"{a.team}_{n}_decision", a.join_timeout)
+        print(f"team {a.team}: {a.players} players and their decisions are up; logs in {self.logs}", flush=True)
+        adapters = [p for name, p in self.procs.items() if name.endswith("_rcss_player")]
+        while any(p.poll() is None for p in adapters):
+            self.executor.spin_once(timeout_sec=0.2)
+        failed = [name for name, p in self.procs.items() if name.endswith("_rcss_player") and p.returncode != 0]
+        print(f"the match is over; adapters that failed: {failed or 'none'}", flush=True)
+        return 1 if failed else 0
+
+    def stop(self) -> None:
+        for p in self.procs.values():
+            if p.poll() is None:
+                p.send_signal(signal.SIGINT)  # components deregister on SIGINT
+        deadline = time.monotonic() + 5.0
+        for p in self.procs.values():
+            try:
+                p.wait(timeout=max(0.1, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                p.kill()
+        self.node.destroy_node()
+        rclpy.try_shutdown()
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``ros2 run cf_sim_backend rcss_team``."""
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    team = Team(args)
+
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, interrupt)
+    signal.signal(signal.SIGINT, interrupt)
+    try:
+        return team.run()
+    except KeyboardInterrupt:
+        return 130
+    except RuntimeError as exc:
+        print(f"rcss_team: {exc}", file=sys.stderr)
+        return 1
+    finally:
+        team.stop()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

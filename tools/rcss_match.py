@@ -1,0 +1,219 @@
+"""A short match of our team on a real rcssserver, for the integration tests and the benchmark.
+
+    python tools/rcss_match.py --server $RCSSSERVER [--players 11] [--opponents 0] [--cycles 300]
+                               [--realtime] [--out DIR] [--no-isolate]
+
+It starts the server (synch mode unless --realtime; trainer with referee; logs off; its own
+config dir), our team with ``rcss_team`` (the ComMAg, the adapters, the decisions), optionally
+a second instance of our team as the opponent, and a trainer that kicks off once every player
+is up (the server would otherwise kick off on its own before our players have joined) and
+answers ``(done)`` in synch mode. At time over it collects each adapter's counters and prints
+one JSON summary on stdout.
+
+rcssserver always binds 0.0.0.0. Unless --no-isolate, the whole match runs in a private network
+namespace (``unshare -n``, loopback only), so nothing is reachable from outside and parallel runs
+cannot collide.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from ament_index_python.packages import get_package_prefix
+
+
+def udp_port_open(port: int) -> bool:
+    for table in ("/proc/net/udp", "/proc/net/udp6"):
+        try:
+            lines = Path(table).read_text().splitlines()[1:]
+        except OSError:
+            continue
+        if any(line.split()[1].endswith(f":{port:04X}") for line in lines):
+            return True
+    return False
+
+
+class Trainer:
+    """The offline coach: kicks off, answers (done) in synch mode, reads the referee's messages."""
+
+    def __init__(self, port: int):
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.sock.bind(("127.0.0.1", 0))
+        self.sock.settimeout(0.05)
+        self.addr = ("127.0.0.1", port)
+        self.mode = "before_kick_off"
+        self.time = 0
+
+    def send(self, text: str) -> None:
+        self.sock.sendto(text.encode() + b"\0", self.addr)
+
+    def connect(self) -> None:
+        for _ in range(100):
+            self.send("(init (version 19))")
+            try:
+                data, addr = self.sock.recvfrom(65536)
+            except TimeoutError:
+                continue
+            if data.startswith(b"(init ok"):
+                self.addr = addr
+                return
+        raise RuntimeError("the trainer could not connect")
+
+    def poll(self) -> None:
+        """Read what is there; answer (think) with (done)."""
+        while True:
+            try:
+                data, _ = self.sock.recvfrom(65536)
+            except TimeoutError:
+                return
+            text = data.rstrip(b"\0").decode(errors="replace")
+            if text == "(think)":
+                self.send("(done)")
+            elif text.startswith("(hear ") and " referee " in text:  # (hear referee TIME MODE) for a trainer
+                parts = text.strip("()").split()
+                self.mode = parts[-1]
+                self.time = next((int(p) for p in parts if p.isdigit()), self.time)
+
+
+def run(args: argparse.Namespace) -> dict:
+    out = Path(args.out or tempfile.mkdtemp(prefix="rcss-match-")).resolve()
+    (out / "conf").mkdir(parents=True, exist_ok=True)
+    (out / "stats").mkdir(exist_ok=True)
+    port = args.port
+    halves = max(1, args.cycles // 10)
+    server_argv = [
+        args.server,
+        f"server::synch_mode={'false' if args.realtime else 'true'}",
+        "server::auto_mode=false",
+        "server::coach_w_referee=true",
+        "server::game_logging=false",
+        "server::text_logging=false",
+        f"server::half_time={halves}",
+        "server::nr_normal_halfs=1",
+        "server::nr_extra_halfs=0",
+        "server::penalty_shoot_outs=false",
+        f"server::port={port}",
+        f"server::coach_port={port + 1}",
+        f"server::olcoach_port={port + 2}",
+        f"server::game_log_dir={out}",
+        f"server::text_log_dir={out}",
+    ]
+    env = {**os.environ, "RCSS_CONF_DIR": str(out / "conf")}
+    procs: list[subprocess.Popen] = []
+    summary: dict = {"out": str(out)}
+    with open(out / "server.log", "wb") as log:
+        server = subprocess.Popen(server_argv, stdout=log, stderr=subprocess.STDOUT, env=env, start_new_session=True)
+    procs.append(server)
+    try:
+        deadline = time.monotonic() + 20
+        while not udp_port_open(port):
+            if server.poll() is not None or time.monotonic() > deadline:
+                raise RuntimeError(f"rcssserver did not start: see {out / 'server.log'}")
+            time.sleep(0.1)
+        trainer = Trainer(port + 1)
+        trainer.connect()
+        trainer.send("(ear on)")  # the referee's decisions
+        team_exe = str(Path(get_package_prefix("cf_sim_backend")) / "lib" / "cf_sim_backend" / "rcss_team")
+        teams = [(args.team, args.players)] + ([(args.opponent, args.opponents)] if args.opponents else [])
+        team_procs = []
+        for i, (name, players) in enumerate(teams):
+            argv = [team_exe, "--team", name, "--port", str(port), "--players", str(players)]
+            argv += ["--log-dir", str(out / f"logs-{name}"), "--stats-dir", str(out / "stats")]
+            if i > 0:
+                argv += ["--no-commag"]  # one ComMAg serves both teams
+            with open(out / f"team-{name}.log", "wb") as log:
+                p = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+            procs.append(p)
+            team_procs.append(p)
+            deadline = time.monotonic() + 60 + 10 * players
+            while b"are up" not in (out / f"team-{name}.log").read_bytes():
+                trainer.poll()
+                if p.poll() is not None or time.monotonic() > deadline:
+                    raise RuntimeError(f"team {name} did not come up: see {out / f'team-{name}.log'}")
+            time.sleep(0.2)
+        t0 = time.monotonic()
+        for _ in range(30):  # let the decisions find their providers and move into formation
+            trainer.poll()
+        trainer.send("(change_mode kick_off_l)")
+        deadline = time.monotonic() + args.timeout
+        while trainer.mode != "time_over":
+            trainer.poll()
+            if server.poll() is not None:
+                raise RuntimeError(f"rcssserver exited with {server.returncode}: see {out / 'server.log'}")
+            if time.monotonic() > deadline:
+                raise RuntimeError(f"the match did not end in {args.timeout} s (at cycle {trainer.time})")
+        summary["seconds"] = round(time.monotonic() - t0, 1)
+        end = time.monotonic() + 15
+        while any(p.poll() is None for p in team_procs) and time.monotonic() < end:
+            trainer.poll()
+        summary["team_exit_codes"] = [p.poll() for p in team_procs]
+    finally:
+        for p in reversed(procs):
+            if p.poll() is None:
+                p.send_signal(signal.SIGINT)
+        for p in reversed(procs):
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+    summary["server_exit_code"] = server.returncode
+    summary["players"] = [json.loads(f.read_text()) for f in sorted((out / "stats").glob("*.json"))]
+    return summary
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--server", default=os.environ.get("RCSSSERVER", ""), help="rcssserver binary ($RCSSSERVER)")
+    ap.add_argument("--team", default="CF")
+    ap.add_argument("--opponent", default="CFB")
+    ap.add_argument("--players", type=int, default=11)
+    ap.add_argument("--opponents", type=int, default=0, help="players of a second instance of our team")
+    ap.add_argument("--cycles", type=int, default=300, help="match length (multiple of 10)")
+    ap.add_argument("--port", type=int, default=6000)
+    ap.add_argument("--realtime", action="store_true", help="real time (100 ms cycles) instead of synch mode")
+    ap.add_argument("--timeout", type=float, default=600.0, help="seconds the match may take")
+    ap.add_argument("--out", default="", help="where logs and counters go (default: a new temp dir)")
+    ap.add_argument("--no-isolate", action="store_true", help="do not run in a private network namespace")
+    args = ap.parse_args()
+    if not args.server:
+        ap.error("name the rcssserver binary with --server or RCSSSERVER")
+    if not args.no_isolate and os.environ.get("CF_RCSS_ISOLATED") != "1":
+        if not shutil.which("unshare"):
+            ap.error("unshare is missing: install util-linux or pass --no-isolate")
+        argv = ["unshare", "-n", "--", sys.executable, *sys.argv]
+        return subprocess.call(argv, env={**os.environ, "CF_RCSS_ISOLATED": "1"})
+    if os.environ.get("CF_RCSS_ISOLATED") == "1":
+        subprocess.run(["ip", "link", "set", "lo", "up"], check=True)
+    try:
+        print(json.dumps(run(args)), flush=True)
+    finally:
+        if os.environ.get("CF_RCSS_ISOLATED") == "1":
+            kill_namespace_leftovers()
+    return 0
+
+
+def kill_namespace_leftovers() -> None:
+    """Kill every other process in our private network namespace (whatever was relaunched in it)."""
+    own = os.readlink("/proc/self/ns/net")
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit() or int(entry.name) == os.getpid():
+            continue
+        try:
+            if os.readlink(entry / "ns" / "net") == own:
+                os.kill(int(entry.name), signal.SIGKILL)
+        except OSError:
+            continue  # gone already, or not ours to read
+
+
+if __name__ == "__main__":
+    sys.exit(main())
