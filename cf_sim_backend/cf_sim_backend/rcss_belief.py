@@ -44,6 +44,7 @@ BALL_MEMORY = 100  # cycles the ball's estimate is still reported
 SELF_SIGMA_GROWTH = 0.1  # m per cycle without a see
 BALL_SIGMA_GROWTH = 0.2
 PLAYER_SIGMA_GROWTH = 0.4
+UNSURE = 50.0  # m: the sigma of a pose we know nothing about
 QUANT = 0.05  # relative distance error of moving objects (the server rounds log(distance) to 0.1)
 
 # rcssserver play modes the embedded simulator's names do not have, as the nearest of those.
@@ -98,7 +99,7 @@ class Self:
     body: float = 0.0
     neck: float = 0.0  # relative to the body, server frame
     stamina: float = 8000.0
-    sigma: float = 50.0  # nothing known before the first see
+    sigma: float = UNSURE  # nothing known before the first see
     sigma_head: float = 180.0
     localised: int = -1  # cycle of the last see that placed us
     view_width: str = "normal"
@@ -184,6 +185,11 @@ class Belief:
             self.score[Side(mode[5])] = int(mode[7:])
         if mode == "half_time":
             self.half += 1
+        near_ball = self.ball is not None and math.hypot(self.ball.x - self.me.x, self.ball.y - self.me.y) < 10.0
+        if mode.startswith(("goal_", "half_time", "kick_off_")) or (mode != "play_on" and near_ball):
+            # The server may put us elsewhere (own half before a kick-off; 9.15 m from the ball at a set
+            # piece): we know nothing until the next see.
+            self.me.sigma = max(self.me.sigma, UNSURE)
         self.mode = sim_mode(mode)
 
     def _on_sense_body(self, msg: list) -> None:
@@ -262,6 +268,17 @@ class Belief:
                 self.players[(team, int(name[2]))] = track
             else:
                 self.anonymous.append((team, track))
+
+    def sent(self, msg: list) -> None:
+        """Take a command we sent (parsed) into account: what a turn or a move will do to our pose."""
+        kind = str(msg[0]) if msg else ""
+        me = self.me
+        if kind == "turn" and len(msg) >= 2:
+            inertia = float(self.param("inertia_moment", 5.0))
+            self.pending_turn = float(msg[1]) / (1.0 + inertia * math.hypot(me.vx, me.vy))
+        elif kind == "move" and len(msg) >= 3:
+            sign = -1 if self.side is Side.RIGHT else 1  # the server mirrors a right player's move
+            me.x, me.y, me.vx, me.vy = float(msg[1]) * sign, float(msg[2]) * sign, 0.0, 0.0
 
     # ---- what others read -----------------------------------------------------
 

@@ -9,7 +9,6 @@ It also counts what a benchmark needs: cycles, body commands sent, and those the
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass, field
 
@@ -18,7 +17,6 @@ from cf_lang.errors import LanguageError
 from .rcss_belief import Belief
 from .rcss_protocol import parse
 from .skills import Command, Skill
-from .world import Side
 
 BODY_COMMANDS = frozenset({"move", "dash", "turn", "kick", "catch", "tackle"})
 _EXECUTED = ("kick", "dash", "turn", "move", "catch")  # sense_body counters of body commands
@@ -138,7 +136,7 @@ class Session:
                 if body_sent:
                     continue  # the server would ignore it: keep the first
                 body_sent = True
-                self._predict(cmd)
+            b.sent(parse(text))  # dead reckoning until the next see
             out.append(text)
         if body_sent:
             self.acted = b.time
@@ -147,13 +145,3 @@ class Session:
         if step.status != "running":
             self.skill = None
         return Acted(out, step.status, step.reason, skill.name, skill.cycles)
-
-    def _predict(self, cmd: Command) -> None:
-        """What a body command will do to our own pose, for dead reckoning until the next see."""
-        b, me = self.belief, self.belief.me
-        if cmd[0] == "turn":
-            inertia = float(b.param("inertia_moment", 5.0))
-            b.pending_turn = -cmd[1] / (1.0 + inertia * math.hypot(me.vx, me.vy))
-        elif cmd[0] == "move":
-            sign = 1 if b.side is Side.LEFT else -1
-            me.x, me.y, me.vx, me.vy = cmd[1] * sign, -cmd[2] * sign, 0.0, 0.0

@@ -1,0 +1,303 @@
+"""The rcssserver adapter's belief and session against the recorded server traces and crafted messages.
+
+Traces (test/data/rcss/): rcssserver 19, one player and a trainer with (eye on); see_global gives the
+ground truth of each cycle. The 1000-cycle one is in synch mode with goals, kick-ins and drop balls.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import statistics
+from pathlib import Path
+
+import pytest
+
+from cf_lang.ontology import PlayMode, Team
+from cf_lang.ontology import actions as act
+from cf_lang.ontology.positioning import AbsolutePositioning
+from cf_sim_backend.rcss_belief import PLAYER_MEMORY, UNSURE, Belief, sim_mode, world_state
+from cf_sim_backend.rcss_protocol import parse
+from cf_sim_backend.rcss_session import Session, rcss_command
+from cf_sim_backend.rcss_trace import belief_errors, read_trace
+from cf_sim_backend.skills import Intercept, KickTo, MoveTo, Skill, skill_for
+from cf_sim_backend.world import Side
+
+DATA = Path(__file__).parent / "data" / "rcss"
+TRACES = ["player-trainer-150cycles.log", "player-trainer-opponents-1000cycles-synch.log.gz"]
+SYNCH = DATA / TRACES[1]
+
+# What rcssserver 19 accepts from a player (numbers as it reads them), one pattern per command.
+NUM = r"-?\d+(\.\d+)?"
+GRAMMAR = {
+    "move": rf"\(move {NUM} {NUM}\)",
+    "dash": rf"\(dash {NUM}( {NUM})?\)",
+    "turn": rf"\(turn {NUM}\)",
+    "kick": rf"\(kick {NUM} {NUM}\)",
+    "turn_neck": rf"\(turn_neck {NUM}\)",
+    "catch": rf"\(catch {NUM}\)",
+    "tackle": rf"\(tackle {NUM}\)",
+    "say": r'\(say "[A-Za-z0-9 ().+*/?<>_-]{1,10}"\)',
+    "done": r"\(done\)",
+    "bye": r"\(bye\)",
+    "init": r"\(init \S+ \(version \d+\)( \(goalie\))?\)",
+    "reconnect": r"\(reconnect \S+ \d+\)",
+}
+RANGES = {"dash": (-100, 100), "turn": (-180, 180), "kick": (0, 100), "turn_neck": (-180, 180), "catch": (-180, 180)}
+BODY = {"move", "dash", "turn", "kick", "catch", "tackle"}
+
+
+def well_formed(text: str) -> bool:
+    name = text[1:].split(" ", 1)[0].rstrip(")")
+    if name not in GRAMMAR or not re.fullmatch(GRAMMAR[name], text):
+        return False
+    if name in RANGES:
+        low, high = RANGES[name]
+        first = float(text[1:-1].split()[1])
+        return low <= first <= high and all(-180 <= float(v) <= 180 for v in text[1:-1].split()[2:])
+    return True
+
+
+# ---- every message, and the checker itself --------------------------------------
+
+
+@pytest.mark.parametrize("trace", TRACES)
+def test_every_message_of_both_traces_parses(trace):
+    messages = read_trace(DATA / trace)
+    assert len(messages) > 600
+    kinds = {str(m[0]) for _, m in messages}
+    assert {"init", "server_param", "player_param", "player_type", "sense_body", "see", "hear"} <= kinds
+
+
+def test_the_command_checker_accepts_what_the_real_client_sent_and_rejects_nonsense():
+    sent = [msg for direction, msg in read_trace(SYNCH) if direction == "P>"]
+    texts = [line.split(" ", 2)[2] for line in _lines(SYNCH) if line.split(" ", 2)[1] == "P>"]
+    assert len(texts) == len(sent) > 1000 and all(well_formed(t) for t in texts)
+    for bad in ("(dash 200)", "(kick 50)", "(turn abc)", "(dash 1e5)", '(say "too long a message")', "(fly 3)"):
+        assert not well_formed(bad), bad
+
+
+def _lines(path: Path) -> list[str]:
+    from cf_sim_backend.rcss_trace import read_text
+
+    return read_text(path).splitlines()
+
+
+# ---- the belief against the ground truth ------------------------------------------
+
+
+@pytest.mark.parametrize("trace", TRACES)
+def test_belief_follows_the_ground_truth_every_cycle(trace):
+    errors = belief_errors(DATA / trace)
+    me, ball = sorted(errors.me), sorted(errors.ball)
+    assert len(me) > 140 and len(ball) > 40
+    # Stated errors (every cycle: localised from flags, or carried on by the sensed speed and our turns).
+    assert statistics.mean(me) < 0.15 and me[int(0.95 * len(me))] < 0.3 and me[-1] < 1.0
+    assert statistics.mean(ball) < 0.5 and ball[int(0.95 * len(ball))] < 1.0
+    assert statistics.mean(errors.ball_velocity) < 0.1  # m/cycle, from the see's distance/direction change
+    assert errors.unsure <= 0.02 * len(me)  # cycles after the server moved us, until the next see
+
+
+def test_belief_follows_play_modes_and_the_score():
+    belief = belief_errors(SYNCH).belief
+    assert belief.side is Side.LEFT and belief.number == 1
+    assert belief.score == {Side.LEFT: 2, Side.RIGHT: 0} and belief.mode == "play_on"
+    assert belief.server["ball_decay"] == 0.94 and len(belief.player_types) == 18
+    assert belief.params().kickable_distance == pytest.approx(1.085)
+
+
+@pytest.mark.parametrize(
+    ("server", "ours"),
+    [
+        ("goal_l_3", "goal_l"),
+        ("kick_in_r", "kick_in_r"),
+        ("free_kick_fault_l", "free_kick_r"),
+        ("back_pass_r", "free_kick_l"),
+        ("indirect_free_kick_l", "free_kick_l"),
+        ("time_up", "time_over"),
+        ("play_on", "play_on"),
+    ],
+)
+def test_server_play_modes_map_to_the_simulators(server, ours):
+    assert sim_mode(server) == ours
+
+
+def _belief(side: str = "l", number: int = 7) -> Belief:
+    b = Belief("CF")
+    b.update(parse(f"(init {side} {number} before_kick_off)"))
+    return b
+
+
+SEE_CENTRE = "((f c) 10 0) ((f c t) 35.44 -73.6) ((f c b) 35.44 73.6)"  # at (-10, 0), facing +x
+
+
+def test_players_are_tracked_by_team_and_number_with_ages_then_forgotten():
+    b = _belief()
+    b.update(parse("(sense_body 10 (view_mode high normal) (stamina 8000 1 130600) (speed 0 0) (head_angle 0))"))
+    b.update(
+        parse(f'(see 10 {SEE_CENTRE} ((p "CF" 3) 5 0 0 0 90 0) ((p "Opp" 9 goalie) 20 0) ((p "Opp") 40 10) ((P) 1 90))')
+    )
+    assert b.opponent == "Opp" and set(b.players) == {("CF", 3), ("Opp", 9)}
+    assert b.players[("CF", 3)].x == pytest.approx(-5.0, abs=0.1) and b.players[("Opp", 9)].goalie
+    state = world_state(b)
+    mate = next(p for p in state.players if p.player_number == 3)
+    assert mate.which_team is Team.OUR and mate.age == 0 and mate.positioning.x == pytest.approx(-5.0, abs=0.1)
+    assert mate.positioning.yaw == pytest.approx(-math.pi / 2, abs=0.05)  # body 90 deg clockwise = -y in our frame
+    anonymous = [p for p in state.players if p.player_number is None]
+    assert {p.which_team for p in anonymous} == {Team.OPP, None}  # far: team only; very near: nothing
+    for t in range(11, 11 + PLAYER_MEMORY):
+        b.update(parse(f"(sense_body {t} (speed 0 0) (head_angle 0))"))
+    assert world_state(b).players[0].age == PLAYER_MEMORY and not world_state(b).players[0].positioning.sigma_x < 5
+    b.update(parse(f"(sense_body {11 + PLAYER_MEMORY} (speed 0 0) (head_angle 0))"))
+    assert not b.players  # forgotten
+
+
+def test_a_right_side_player_sees_the_field_from_its_own_goal():
+    b = _belief("r", 2)
+    b.update(parse("(sense_body 0 (speed 0 0) (head_angle 0))"))
+    b.update(parse(f"(see 0 {SEE_CENTRE} ((b) 10 0))"))  # server: at (-10, 0) facing +x, ball at the centre
+    state = world_state(b)
+    me = state.me.positioning
+    assert me.x == pytest.approx(10.0, abs=0.1) and me.y == pytest.approx(0.0, abs=0.1)  # attacking -x: own frame flips
+    assert abs(me.yaw) == pytest.approx(math.pi, abs=0.02)
+    assert state.ball.positioning.x == pytest.approx(0.0, abs=0.6) and state.ball.age == 0
+    b.update(parse("(hear 0 referee kick_off_r)"))
+    assert world_state(b).game.play_mode is PlayMode.KICK_OFF_OUR
+
+
+def test_ball_rolls_on_with_decay_and_its_age_grows_while_not_seen():
+    b = _belief()
+    b.update(parse("(sense_body 5 (speed 0 0) (head_angle 0))"))
+    b.update(parse(f"(see 5 {SEE_CENTRE} ((b) 5 0 1 0))"))  # 5 m ahead, moving away at 1 m/cycle
+    assert b.ball.vx == pytest.approx(1.0, abs=0.05)
+    b.update(parse("(sense_body 6 (speed 0 0) (head_angle 0))"))
+    ball = world_state(b).ball
+    assert ball.age == 1 and ball.positioning.x == pytest.approx(-4.0, abs=0.1)
+    assert ball.velocity.vx == pytest.approx(9.4, abs=0.5)  # m/s after one cycle's decay
+
+
+def test_a_goal_makes_the_pose_unknown_until_the_next_see():
+    b = _belief()
+    b.update(parse("(sense_body 5 (speed 0 0) (head_angle 0))"))
+    b.update(parse(f"(see 5 {SEE_CENTRE})"))
+    assert b.me.sigma < 1.0
+    b.update(parse("(hear 5 referee goal_l_1)"))
+    assert b.me.sigma >= UNSURE and b.score[Side.LEFT] == 1
+    b.update(parse(f"(see 5 {SEE_CENTRE})"))
+    assert b.me.sigma < 1.0
+
+
+# ---- the session: commands ------------------------------------------------------------
+
+
+def test_commands_are_mirrored_into_the_servers_frame():
+    assert rcss_command(("turn", 30.0)) == "(turn -30)"  # to our left = counter-clockwise = negative there
+    assert rcss_command(("dash", 80.0)) == "(dash 80)"
+    assert rcss_command(("dash", 80.0, 90.0)) == "(dash 80 -90)"
+    assert rcss_command(("kick", 55.556, -10.0)) == "(kick 55.56 10)"
+    assert rcss_command(("move", -10.0, 5.0)) == "(move -10 -5)"
+    assert rcss_command(("turn_neck", -45.0)) == "(turn_neck 45)"
+    assert rcss_command(("say", 'hi "there"&you')) == '(say "hi thereyo")'
+    assert rcss_command(("say",)) is None
+
+
+def test_a_move_before_kick_off_places_a_right_player_in_its_own_half():
+    b = _belief("r", 4)
+    b.sent(parse("(move -20 5)"))
+    assert (b.me.x, b.me.y) == (20.0, -5.0)  # the server mirrors the right team's move
+
+
+class TwoBodyCommands(Skill):
+    """A skill that asks for more than the server takes in one cycle."""
+
+    name = "greedy"
+
+    def _step(self, world, me):
+        return __import__("cf_sim_backend.skills", fromlist=["Step"]).Step(
+            [("dash", 50.0), ("turn", 10.0), ("turn_neck", 5.0), ("kick", 10.0, 0.0)]
+        )
+
+
+def replay_acting(skills: list[Skill]) -> tuple[dict[int, list[str]], Session]:
+    """Feed the synch trace to a session; at each (think) run one step of the current skill."""
+    session, sent = Session("PyTest"), {}
+    queue = list(skills)
+    for direction, msg in read_trace(SYNCH):
+        if direction != "P<":
+            continue
+        kind = session.receive(_text(msg))
+        if kind == "think":
+            if session.skill is None and queue:
+                session.start(queue.pop(0))
+            sent.setdefault(session.belief.time, []).extend(session.act().commands)
+            sent[session.belief.time].extend(session.act().commands)  # a second act in one cycle sends nothing
+    return sent, session
+
+
+def _text(msg) -> str:
+    from cf_lang.sexp import dumps
+
+    return dumps(msg)
+
+
+def test_at_most_one_well_formed_body_command_per_cycle_over_a_whole_trace():
+    skills: list[Skill] = [TwoBodyCommands(), MoveTo(-20.0, 10.0, 80.0), Intercept(), KickTo("shoot", 52.5, 0.0, None)]
+    skills += [Intercept() for _ in range(20)]
+    sent, session = replay_acting(skills)
+    commands = [c for cycle in sent.values() for c in cycle]
+    assert len(sent) > 900 and len(commands) > 300
+    assert all(well_formed(c) for c in commands), [c for c in commands if not well_formed(c)][:5]
+    for t, cycle in sent.items():
+        body = [c for c in cycle if c[1:].split(" ")[0].rstrip(")") in BODY]
+        assert len(body) <= 1, (t, cycle)
+    assert session.stats["body_commands"] == sum(
+        1 for cycle in sent.values() if any(c[1:].split(" ")[0] in BODY for c in cycle)
+    )
+    assert sent[min(sent)][:2] == ["(dash 50)", "(turn_neck -5)"]  # the greedy skill's first body command only
+
+
+def test_skills_from_the_framework_language_run_on_the_belief():
+    _, session = replay_acting([])
+    b = session.belief
+    world = b.world()
+    me = world.player(Side.LEFT, 1)
+    target = AbsolutePositioning(x=0.0, y=0.0)
+    skill = skill_for("moveTo", act.MoveTo(target=target, speed=60.0), Side.LEFT, world, me)
+    step = skill.step(world, me)
+    assert step.commands and step.commands[0][0] in ("dash", "turn")
+    with pytest.raises(ValueError, match="not kickable"):
+        far = world.ball.x + 30.0
+        world.ball.x = far
+        skill_for("kick", act.Kick(power=50.0, direction=0.0), Side.LEFT, world, me)
+
+
+# ---- bad input --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("data", [b"\xff\xfe(see", b"(see 3 ((f c) 1", b"))(", b"", b"(" * 100 + b")" * 100])
+def test_unreadable_datagrams_are_counted_and_change_nothing(data):
+    session = Session("CF")
+    session.receive(b"(init l 3 before_kick_off)\0")
+    assert session.receive(data) == "bad"
+    assert session.stats["bad_messages"] == 1 and session.belief.number == 3 and session.belief.errors
+    assert session.receive(b"(sense_body 1 (speed 0 0) (head_angle 0))\0") == "sense_body"
+
+
+def test_server_errors_are_kept_and_the_hello_says_who_we_are():
+    session = Session("CF", goalie=True)
+    assert session.hello() == "(init CF (version 19) (goalie))" and well_formed(session.hello())
+    assert session.reconnect(4) == "(reconnect CF 4)" and session.belief.number == 4
+    session.receive(b"(error no_more_player_or_goalie_or_illegal_client_version)\0")
+    assert session.belief.errors == ["no_more_player_or_goalie_or_illegal_client_version"] and not session.ready
+
+
+def test_a_see_is_expected_every_second_cycle_at_normal_width():
+    b = _belief()
+    b.update(parse("(sense_body 1 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    assert b.expects_see()  # none seen yet
+    b.update(parse(f"(see 1 {SEE_CENTRE})"))
+    assert not b.expects_see()
+    b.update(parse("(sense_body 2 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    assert not b.expects_see()
+    b.update(parse("(sense_body 3 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    assert b.expects_see()
