@@ -8,6 +8,7 @@ This is the first piece of the rcssserver adapter (issue #8).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 from cf_lang.sexp import Limits, loads
@@ -97,3 +98,39 @@ def read_see(msg: list) -> See:
         else:
             objects.append(Seen(name, values[0], values[1], [*values[2:], *marks]))
     return See(int(msg[1]), objects)
+
+
+# What rcssserver 19 takes from a player, one pattern per command (numbers as it reads them).
+_NUM = r"-?\d+(\.\d+)?"
+COMMAND_GRAMMAR = {
+    "move": rf"\(move {_NUM} {_NUM}\)",
+    "dash": rf"\(dash {_NUM}( {_NUM})?\)",
+    "turn": rf"\(turn {_NUM}\)",
+    "kick": rf"\(kick {_NUM} {_NUM}\)",
+    "turn_neck": rf"\(turn_neck {_NUM}\)",
+    "catch": rf"\(catch {_NUM}\)",
+    "tackle": rf"\(tackle {_NUM}\)",
+    "say": r'\(say "[A-Za-z0-9 ().+*/?<>_-]{1,10}"\)',
+    "done": r"\(done\)",
+    "bye": r"\(bye\)",
+    "init": r"\(init \S+ \(version \d+\)( \(goalie\))?\)",
+    "reconnect": r"\(reconnect \S+ \d+\)",
+}
+_RANGES = {"dash": (-100, 100), "turn": (-180, 180), "kick": (0, 100), "turn_neck": (-180, 180), "catch": (-180, 180)}
+BODY_COMMANDS = frozenset({"move", "dash", "turn", "kick", "catch", "tackle"})  # one per cycle; extras ignored
+
+
+def command_name(text: str) -> str:
+    return text[1:].split(" ", 1)[0].rstrip(")")
+
+
+def well_formed(text: str) -> bool:
+    """Whether rcssserver would take this player command as it is (form and ranges)."""
+    name = command_name(text)
+    if name not in COMMAND_GRAMMAR or not re.fullmatch(COMMAND_GRAMMAR[name], text):
+        return False
+    if name in _RANGES:
+        low, high = _RANGES[name]
+        values = [float(v) for v in text[1:-1].split()[1:]]
+        return low <= values[0] <= high and all(-180 <= v <= 180 for v in values[1:])
+    return True

@@ -15,10 +15,9 @@ from dataclasses import dataclass, field
 from cf_lang.errors import LanguageError
 
 from .rcss_belief import Belief
-from .rcss_protocol import parse
+from .rcss_protocol import BODY_COMMANDS, parse
 from .skills import Command, Skill
 
-BODY_COMMANDS = frozenset({"move", "dash", "turn", "kick", "catch", "tackle"})
 _EXECUTED = ("kick", "dash", "turn", "move", "catch")  # sense_body counters of body commands
 _SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
 

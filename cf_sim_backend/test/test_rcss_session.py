@@ -7,7 +7,6 @@ ground truth of each cycle. The 1000-cycle one is in synch mode with goals, kick
 from __future__ import annotations
 
 import math
-import re
 import statistics
 from pathlib import Path
 
@@ -17,7 +16,7 @@ from cf_lang.ontology import PlayMode, Team
 from cf_lang.ontology import actions as act
 from cf_lang.ontology.positioning import AbsolutePositioning
 from cf_sim_backend.rcss_belief import PLAYER_MEMORY, UNSURE, Belief, sim_mode, world_state
-from cf_sim_backend.rcss_protocol import parse
+from cf_sim_backend.rcss_protocol import BODY_COMMANDS, parse, well_formed
 from cf_sim_backend.rcss_session import Session, rcss_command
 from cf_sim_backend.rcss_trace import belief_errors, read_trace
 from cf_sim_backend.skills import Intercept, KickTo, MoveTo, Skill, skill_for
@@ -27,35 +26,7 @@ DATA = Path(__file__).parent / "data" / "rcss"
 TRACES = ["player-trainer-150cycles.log", "player-trainer-opponents-1000cycles-synch.log.gz"]
 SYNCH = DATA / TRACES[1]
 
-# What rcssserver 19 accepts from a player (numbers as it reads them), one pattern per command.
-NUM = r"-?\d+(\.\d+)?"
-GRAMMAR = {
-    "move": rf"\(move {NUM} {NUM}\)",
-    "dash": rf"\(dash {NUM}( {NUM})?\)",
-    "turn": rf"\(turn {NUM}\)",
-    "kick": rf"\(kick {NUM} {NUM}\)",
-    "turn_neck": rf"\(turn_neck {NUM}\)",
-    "catch": rf"\(catch {NUM}\)",
-    "tackle": rf"\(tackle {NUM}\)",
-    "say": r'\(say "[A-Za-z0-9 ().+*/?<>_-]{1,10}"\)',
-    "done": r"\(done\)",
-    "bye": r"\(bye\)",
-    "init": r"\(init \S+ \(version \d+\)( \(goalie\))?\)",
-    "reconnect": r"\(reconnect \S+ \d+\)",
-}
-RANGES = {"dash": (-100, 100), "turn": (-180, 180), "kick": (0, 100), "turn_neck": (-180, 180), "catch": (-180, 180)}
-BODY = {"move", "dash", "turn", "kick", "catch", "tackle"}
-
-
-def well_formed(text: str) -> bool:
-    name = text[1:].split(" ", 1)[0].rstrip(")")
-    if name not in GRAMMAR or not re.fullmatch(GRAMMAR[name], text):
-        return False
-    if name in RANGES:
-        low, high = RANGES[name]
-        first = float(text[1:-1].split()[1])
-        return low <= first <= high and all(-180 <= float(v) <= 180 for v in text[1:-1].split()[2:])
-    return True
+BODY = BODY_COMMANDS
 
 
 # ---- every message, and the checker itself --------------------------------------
