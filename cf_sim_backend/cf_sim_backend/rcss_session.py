@@ -97,14 +97,16 @@ class Session:
         if not isinstance(msg, list) or not msg:
             self.stats["bad_messages"] += 1
             return "bad"
+        known = bool(self.belief.counters)
         before = sum(self.belief.counters.get(k, 0) for k in _EXECUTED)
         kind = self.belief.update(msg)
-        if kind == "sense_body" and self.belief.time != self._counted:
-            self._counted = self.belief.time
-            self.stats["cycles"] += 1
-            after = sum(self.belief.counters.get(k, 0) for k in _EXECUTED)
-            if self.stats["cycles"] > 1:
-                self.stats["executed"] += max(0, after - before)
+        if kind == "sense_body":
+            # The server's counters of executed body commands (before the kick-off too, when time stands still).
+            if known:
+                self.stats["executed"] += max(0, sum(self.belief.counters.get(k, 0) for k in _EXECUTED) - before)
+            if self.belief.time != self._counted:
+                self._counted = self.belief.time
+                self.stats["cycles"] += 1
         return kind
 
     @property

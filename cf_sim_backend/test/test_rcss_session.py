@@ -272,3 +272,15 @@ def test_a_see_is_expected_every_second_cycle_at_normal_width():
     assert not b.expects_see()
     b.update(parse("(sense_body 3 (view_mode high normal) (speed 0 0) (head_angle 0))"))
     assert b.expects_see()
+
+
+def test_commands_the_server_executed_are_counted_from_its_counters_also_before_kick_off():
+    session = Session("CF")
+    session.receive(b"(init l 3 before_kick_off)\0")
+    for text in (
+        "(sense_body 0 (kick 0) (dash 0) (turn 0) (move 0))",
+        "(sense_body 0 (kick 0) (dash 0) (turn 0) (move 1))",
+    ):
+        session.receive(text.encode())
+    session.receive(b"(sense_body 1 (kick 1) (dash 2) (turn 0) (move 1))")
+    assert session.stats["executed"] == 4 and session.stats["cycles"] == 2
