@@ -43,19 +43,48 @@ def evaluate(val: Val, state: WorldState) -> str:
     raise Refuse(f"{val.cls} has no attribute {val.attribute}")
 
 
-def inform_subscribers(subscribers: list[tuple[Responder, Val]], state: WorldState) -> list[tuple[Responder, Val]]:
-    """Tell every open subscription its value in ``state``; returns the ones still open.
+class PerceptionService:
+    """The WorldModel service of one player, whatever the back-end: (val ...) queries and subscriptions.
 
-    A value not perceived this cycle (e.g. the ball out of view) is skipped, not the subscription.
+    The back-end calls :meth:`publish` with each cycle's perceived state; every open subscription is
+    informed of its value (a value not perceived this cycle, e.g. the ball out of view, is skipped,
+    not the subscription).
     """
-    alive = []
-    for responder, val in subscribers:
-        if not responder.open:
-            continue
-        with contextlib.suppress(Refuse, Failure):
-            responder.inform(evaluate(val, state))
-        alive.append((responder, val))
-    return alive
+
+    def __init__(self, agent, not_yet: str):
+        self.state: WorldState | None = None
+        self.subscribers: list[tuple[Responder, Val]] = []
+        self._not_yet = not_yet
+        agent.serve("fipa-query", self._on_query)
+        agent.serve("fipa-subscribe", self._on_subscribe)
+
+    def publish(self, state: WorldState) -> None:
+        self.state = state
+        alive = []
+        for responder, val in self.subscribers:
+            if not responder.open:
+                continue
+            with contextlib.suppress(Refuse, Failure):
+                responder.inform(evaluate(val, state))
+            alive.append((responder, val))
+        self.subscribers = alive
+
+    def _val(self, msg: AclMessage) -> Val:
+        expr = parse_expr(msg.content or "")
+        if not isinstance(expr, Val):
+            raise Refuse("perception answers (val ...) expressions only")
+        return expr
+
+    def _on_query(self, msg: AclMessage, responder: Responder) -> str:
+        val = self._val(msg)
+        if self.state is None:
+            raise Failure(f"no perception yet: {self._not_yet}")
+        return evaluate(val, self.state)
+
+    def _on_subscribe(self, msg: AclMessage, responder: Responder) -> None:
+        val = self._val(msg)
+        responder.agree()
+        self.subscribers.append((responder, val))
 
 
 def _find_player(state: WorldState, key: dict):
@@ -81,31 +110,10 @@ class PerceptionNode(PlayerComponentNode):
             **kwargs,
         )
         self.rng = random.Random(int(self.p["seed"]) * 100 + self.number + (0 if self.p["side"] == "l" else 50))
-        self.state: WorldState | None = None
-        self.subscribers: list[tuple[Responder, Val]] = []
-        self.agent.serve("fipa-query", self._on_query)
-        self.agent.serve("fipa-subscribe", self._on_subscribe)
+        self.perception = PerceptionService(self.agent, "the simulator has not started")
 
     def on_cycle(self, world: World) -> None:
-        self.state = observe(world, self.side, self.number, self.rng, noise=float(self.p["noise"]))
-        self.subscribers = inform_subscribers(self.subscribers, self.state)
-
-    def _val(self, msg: AclMessage) -> Val:
-        expr = parse_expr(msg.content or "")
-        if not isinstance(expr, Val):
-            raise Refuse("perception answers (val ...) expressions only")
-        return expr
-
-    def _on_query(self, msg: AclMessage, responder: Responder) -> str:
-        val = self._val(msg)
-        if self.state is None:
-            raise Failure("no perception yet: the simulator has not started")
-        return evaluate(val, self.state)
-
-    def _on_subscribe(self, msg: AclMessage, responder: Responder) -> None:
-        val = self._val(msg)
-        responder.agree()
-        self.subscribers.append((responder, val))
+        self.perception.publish(observe(world, self.side, self.number, self.rng, noise=float(self.p["noise"])))
 
 
 def main() -> int:

@@ -30,12 +30,12 @@ from collections import deque
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 
-from cf_commag.client import Agent, Failure, Refuse, Responder, init, own_launch_command, spin
-from cf_lang import Exec, Val, parse_expr
+from cf_commag.client import Agent, Refuse, Responder, init, own_launch_command, spin
+from cf_lang import Exec, parse_expr
 from cf_lang.acl import AclMessage
-from cf_lang.ontology import Team, WorldState
+from cf_lang.ontology import Team
 
-from .perception_node import evaluate, inform_subscribers
+from .perception_node import PerceptionService
 from .rcss_belief import world_state
 from .rcss_session import Session
 from .skills import SkillError, skill_for
@@ -68,9 +68,8 @@ class RcssPlayerNode(Node):
         self.p = {name: self.get_parameter(name).value for name in PARAMS}
         self.session = Session(str(self.p["team"]), bool(self.p["goalie"]), int(self.p["version"]))
         self.agents: list[Agent] = []
-        self.subscribers: list[tuple[Responder, Val]] = []
+        self.perception: PerceptionService | None = None  # once the server has given us a number
         self.current: Responder | None = None
-        self.state: WorldState | None = None
         self.synch = False
         self.cycle_done = -1  # the last cycle acted on
         self.waiting = False  # synch mode: perceived this cycle, (done) not yet sent
@@ -161,8 +160,7 @@ class RcssPlayerNode(Node):
         # One process serves both; only the perception carries the launch command, so a dead process
         # is relaunched once (the action registration comes back with it).
         action = Agent(self, name=f"{team}_{n}_action", service_class="Action", **common)
-        perception.serve("fipa-query", self._on_query)
-        perception.serve("fipa-subscribe", self._on_subscribe)
+        self.perception = PerceptionService(perception, "the server has not sent a cycle")
         action.serve("fipa-request", self._on_request)
         self.agents.extend([perception, action])  # spin() holds this very list
 
@@ -199,8 +197,8 @@ class RcssPlayerNode(Node):
     def _perceive(self) -> None:
         if not self.session.ready:
             return
-        self.state = world_state(self.session.belief)
-        self.subscribers = inform_subscribers(self.subscribers, self.state)
+        if self.perception is not None:
+            self.perception.publish(world_state(self.session.belief))
 
     def _act(self) -> None:
         self.cycle_done = self.session.belief.time
@@ -220,23 +218,6 @@ class RcssPlayerNode(Node):
             self._write_stats()
 
     # ---- the services ---------------------------------------------------------------
-
-    def _val(self, msg: AclMessage) -> Val:
-        expr = parse_expr(msg.content or "")
-        if not isinstance(expr, Val):
-            raise Refuse("perception answers (val ...) expressions only")
-        return expr
-
-    def _on_query(self, msg: AclMessage, responder: Responder) -> str:
-        val = self._val(msg)
-        if self.state is None:
-            raise Failure("no perception yet: the server has not sent a cycle")
-        return evaluate(val, self.state)
-
-    def _on_subscribe(self, msg: AclMessage, responder: Responder) -> None:
-        val = self._val(msg)
-        responder.agree()
-        self.subscribers.append((responder, val))
 
     def _on_request(self, msg: AclMessage, responder: Responder) -> None:
         expr = parse_expr(msg.content or "")
