@@ -52,3 +52,13 @@ def test_two_instances_of_our_team_play_each_other(tmp_path):
     for team in ("CF", "CFB"):
         kicks = sum(p["kicks"] for p in summary["players"] if p["team"] == team)
         assert kicks > 0, f"{team} never reached the ball"
+
+
+def test_a_killed_adapter_is_relaunched_and_takes_its_player_over_mid_match(tmp_path):
+    summary = play(tmp_path, "--players", "5", "--cycles", "300", "--kill", "3@100")
+    assert summary["killed"]["pid"] is not None and summary["killed"]["cycle"] >= 100
+    assert summary["team_exit_codes"] == [0] and summary["server_exit_code"] == 0
+    assert summary["relaunched"] == 1 and summary["withdrawn"] == 0
+    three = next(p for p in summary["players"] if p["number"] == 3)  # the stats of the relaunched process
+    assert three["mode"] == "time_over" and three["cycles"] >= 100 and three["body_commands"] > 0
+    assert all(p["mode"] == "time_over" for p in summary["players"])

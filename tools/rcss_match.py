@@ -85,6 +85,21 @@ class Trainer:
                 self.time = next((int(p) for p in parts if p.isdigit()), self.time)
 
 
+def kill_adapter(team: str, number: int) -> int | None:
+    """kill -9 the adapter of our player ``number`` (found by its stats file); returns its pid."""
+    for entry in Path("/proc").iterdir():
+        try:
+            argv = (entry / "cmdline").read_bytes().split(b"\0")
+        except OSError:
+            continue
+        if any(a.endswith(b"rcss_player") for a in argv) and any(
+            a.endswith(f"/{team}_{number}.json".encode()) for a in argv
+        ):
+            os.kill(int(entry.name), signal.SIGKILL)
+            return int(entry.name)
+    return None
+
+
 def run(args: argparse.Namespace) -> dict:
     out = Path(args.out or tempfile.mkdtemp(prefix="rcss-match-")).resolve()
     (out / "conf").mkdir(parents=True, exist_ok=True)
@@ -146,8 +161,11 @@ def run(args: argparse.Namespace) -> dict:
             trainer.poll()
         trainer.send("(change_mode kick_off_l)")
         deadline = time.monotonic() + args.timeout
+        kill = tuple(int(v) for v in args.kill.split("@")) if args.kill else None
         while trainer.mode != "time_over":
             trainer.poll()
+            if kill and trainer.time >= kill[1] and "killed" not in summary:
+                summary["killed"] = {"number": kill[0], "cycle": trainer.time, "pid": kill_adapter(args.team, kill[0])}
             if server.poll() is not None:
                 raise RuntimeError(f"rcssserver exited with {server.returncode}: see {out / 'server.log'}")
             if time.monotonic() > deadline:
@@ -168,6 +186,10 @@ def run(args: argparse.Namespace) -> dict:
                 os.killpg(p.pid, signal.SIGKILL)
     summary["server_exit_code"] = server.returncode
     summary["players"] = [json.loads(f.read_text()) for f in sorted((out / "stats").glob("*.json"))]
+    commag_log = out / f"logs-{args.team}" / "commag.log"
+    events = commag_log.read_text(errors="replace") if commag_log.exists() else ""
+    summary["relaunched"] = events.count(": relaunched (")
+    summary["withdrawn"] = events.count(": withdrawn (")
     return summary
 
 
@@ -183,6 +205,7 @@ def main() -> int:
     ap.add_argument("--realtime", action="store_true", help="real time (100 ms cycles) instead of synch mode")
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds the match may take")
     ap.add_argument("--out", default="", help="where logs and counters go (default: a new temp dir)")
+    ap.add_argument("--kill", default="", help="N@CYCLE: kill -9 our player N's adapter at that cycle")
     ap.add_argument("--no-isolate", action="store_true", help="do not run in a private network namespace")
     args = ap.parse_args()
     if not args.server:

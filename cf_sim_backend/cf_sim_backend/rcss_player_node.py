@@ -46,8 +46,11 @@ PARAMS = {
     "port": (6000, "rcssserver's player port"),
     "team": ("CommonFramework", "team name on the server (and the components' team)"),
     "goalie": (False, "connect as the goalkeeper"),
-    "number": (0, "the shirt number to take back after a relaunch (with reconnect)"),
+    "number": (0, "the shirt number to take back after a relaunch"),
     "reconnect": (False, "take over player <number> with (reconnect ...) instead of (init ...)"),
+    "side": ("", "after a relaunch: our side (l or r), with number, local_port and player_port"),
+    "local_port": (0, "UDP port to bind (0: any); a relaunch binds its predecessor's"),
+    "player_port": (0, "after a relaunch: the server's port for this player (skips init)"),
     "version": (19, "player protocol version"),
     "synch_wait": (0.03, "synch mode: seconds to wait for a decision's request before (done)"),
     "see_wait": (0.015, "real time: seconds to wait for a due see after sense_body"),
@@ -80,7 +83,10 @@ class RcssPlayerNode(Node):
         self.server = (host, int(self.p["port"]))
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         # A loopback server needs only a loopback socket; otherwise listen where the server can answer.
-        self.sock.bind(("127.0.0.1" if host.startswith("127.") else "", 0))
+        # No SO_REUSEADDR: binding a predecessor's port succeeds only once that process is gone,
+        # so a relaunched adapter can never steal the player from one that is still alive.
+        self.sock.bind(("127.0.0.1" if host.startswith("127.") else "", int(self.p["local_port"])))
+        self.heard_any = False
         self.queue: deque[tuple[bytes, tuple]] = deque()
         self.wake = self.create_guard_condition(self._drain)
         self.act_timer = self.create_timer(float(self.p["synch_wait"]), self._on_act_timer)
@@ -89,7 +95,10 @@ class RcssPlayerNode(Node):
         self.see_timer.cancel()
         self.create_timer(1.0, self._watch)
         threading.Thread(target=self._read, name="rcss-udp", daemon=True).start()
-        self._hello()
+        if self.p["side"] and int(self.p["number"]) and int(self.p["player_port"]):
+            self._take_over()
+        else:
+            self._hello()
 
     # ---- the server -------------------------------------------------------------
 
@@ -97,6 +106,14 @@ class RcssPlayerNode(Node):
         number = int(self.p["number"])
         text = self.session.reconnect(number) if self.p["reconnect"] and number else self.session.hello()
         self._send(text, to=self.server)
+
+    def _take_over(self) -> None:
+        """A relaunch: carry on as the player a dead predecessor was, on its ports; the server sees no change."""
+        b = self.session.belief
+        b.side, b.number = Side(self.p["side"]), int(self.p["number"])
+        self.server = (self.server[0], int(self.p["player_port"]))
+        self.get_logger().info(f"taking over {self.session.team} {b.number} from a previous process")
+        self._join()
 
     def _send(self, text: str, to: tuple | None = None) -> None:
         try:
@@ -120,11 +137,13 @@ class RcssPlayerNode(Node):
 
     def _on_datagram(self, data: bytes, addr: tuple) -> None:
         self.last_heard = time.monotonic()
+        self.heard_any = True
         joined = bool(self.agents)
         kind = self.session.receive(data)
-        if kind in ("init", "reconnect") and not joined and self.session.ready:
+        if kind in ("init", "reconnect") and self.session.ready:
             self.server = addr  # after init the server talks from a port of its own for this player
-            self._join()
+            if not joined:
+                self._join()
         elif kind in ("error", "warning"):
             self.get_logger().warning(f"server: {data.rstrip(bytes(1)).decode(errors='replace')}")
             if not self.session.ready and b"no_more_player" in data:
@@ -152,7 +171,11 @@ class RcssPlayerNode(Node):
         b = self.session.belief
         team, n = self.session.team, b.number
         self.get_logger().info(f"playing as {team} {n} on side {b.side.value}")
-        launch = [*own_launch_command(), "--ros-args", "-p", f"number:={n}", "-p", "reconnect:=true"]
+        # A relaunch takes over on our ports (no init: the server keeps the player); if it hears
+        # nothing it falls back to (reconnect ...).
+        port = self.sock.getsockname()[1]
+        launch = [*own_launch_command(), "--ros-args", "-p", f"number:={n}", "-p", f"side:={b.side.value}"]
+        launch += ["-p", f"local_port:={port}", "-p", f"player_port:={self.server[1]}", "-p", "reconnect:=true"]
         common = {"team": team, "player_number": n, "lease": float(self.p["lease"]), "commag": self.p["commag"]}
         perception = Agent(
             self, name=f"{team}_{n}_perception", service_class="WorldModel", launch_command=launch, **common
@@ -168,6 +191,9 @@ class RcssPlayerNode(Node):
         silent = time.monotonic() - self.last_heard
         if silent > 2.0 and not self.session.ready:
             self._hello()  # the server may not have been up yet
+        elif silent > 3.0 and not self.heard_any:
+            self.server = (self.server[0], int(self.p["port"]))
+            self._hello()  # took over, but the server does not talk to us: ask for the player back
         if silent > float(self.p["server_timeout"]) and not self.finished:
             self.get_logger().error(f"the server has been silent for {silent:.0f} s")
             self.finished = True
@@ -279,7 +305,11 @@ class RcssPlayerNode(Node):
 def main() -> int:
     """Entry point of ``ros2 run cf_sim_backend rcss_player``."""
     init(args=sys.argv)
-    node = RcssPlayerNode()
+    try:
+        node = RcssPlayerNode()
+    except OSError as exc:  # e.g. the predecessor's port is still bound: it is alive, we are not needed
+        print(f"rcss_player: cannot open the player's UDP port: {exc}", file=sys.stderr)
+        return 4
     try:
         spin(node, node.agents)  # the default executor: the events one has no guard conditions (Jazzy)
     except SystemExit as exc:

@@ -115,8 +115,11 @@ class Team:
         adapters = [p for name, p in self.procs.items() if name.endswith("_rcss_player")]
         while any(p.poll() is None for p in adapters):
             self.executor.spin_once(timeout_sec=0.2)
-        failed = [name for name, p in self.procs.items() if name.endswith("_rcss_player") and p.returncode != 0]
-        print(f"the match is over; adapters that failed: {failed or 'none'}", flush=True)
+        ended = {name: p.returncode for name, p in self.procs.items() if name.endswith("_rcss_player")}
+        killed = [name for name, code in ended.items() if code < 0]  # by a signal: the ComMAg relaunched them
+        failed = [name for name, code in ended.items() if code > 0]
+        print(f"the match is over; adapters killed (relaunched by the ComMAg): {killed or 'none'}", flush=True)
+        print(f"adapters that failed: {failed or 'none'}", flush=True)
         return 1 if failed else 0
 
     def stop(self) -> None:
