@@ -60,6 +60,7 @@ class ReplayServer:
         self.hello = ""
         self.sent: dict[int, list[str]] = {}  # cycle index -> what the player sent in it
         self.missed = 0  # cycles the player did not finish with (done) in time
+        self.missed_at: list[int] = []
         self.cycle = -1
         self.error: BaseException | None = None
         self.thread = threading.Thread(target=self._run, daemon=True)
@@ -92,6 +93,7 @@ class ReplayServer:
                     self.sent[index].append(text)
                 else:
                     self.missed += 1
+                    self.missed_at.append(index)
         except BaseException as exc:  # reported by the test
             self.error = exc
 
@@ -136,3 +138,28 @@ def test_adapter_serves_perception_and_action_to_an_unchanged_decision(procs, pr
     acting = sum(any(command_name(c) in BODY_COMMANDS for c in cycle) for cycle in server.sent.values())
     assert acting > CYCLES // 3, f"the decision drove the player in only {acting} of {CYCLES} cycles"
     assert "Traceback" not in procs.log("rcss_player") and "Traceback" not in procs.log("decision")
+
+
+def test_a_killed_adapter_is_relaunched_on_its_ports_and_the_replay_goes_on(procs, probe, tag, tmp_path):
+    commag = f"/commag_{tag}"
+    start_commag(procs, tag, tmp_path)
+    server = ReplayServer(TRACE, 400)
+    adapter = [executable("cf_sim_backend", "rcss_player"), "--ros-args", "-r", f"__node:=rcss_{tag}"]
+    for p in (f"port:={server.port}", "team:=PyTest", f"commag:={commag}", "synch_wait:=0.02", "lease:=1.0"):
+        adapter += ["-p", p]
+    first = procs.start(adapter, "rcss_player")
+    probe.wait_kind("PyTest_1_perception", "registered", timeout=60)
+    probe.spin_until(lambda: server.cycle > 30, 60, "thirty cycles played")
+    first.kill()  # kill -9
+    killed_at = server.cycle
+    probe.wait_kind("PyTest_1_perception", "relaunched", timeout=60)
+    probe.spin_until(lambda: not server.thread.is_alive(), 300, "the replay to end")
+    assert server.error is None, server.error
+    assert server.hello == "(init PyTest (version 19))"  # said once: the relaunch did not init again
+    after = range(killed_at + 1, len(server.cycles))
+    assert len(after) > 50, "killed too late to see the relaunch play on"
+    # The dead process misses a cycle or two (the replay waits 2 s for each); then the relaunched
+    # one, on the same UDP port, answers every (think) without the server having noticed.
+    assert 1 <= server.missed <= 3 and all(i >= killed_at for i in server.missed_at), server.missed_at
+    assert server.missed_at[-1] < killed_at + 5
+    assert "taking over PyTest 1" in (tmp_path / "component-logs" / "PyTest_1_perception.log").read_text()
