@@ -38,6 +38,7 @@ SNAPSHOT_QOS = QoSProfile(
     durability=DurabilityPolicy.TRANSIENT_LOCAL,
     history=HistoryPolicy.KEEP_LAST,
 )
+STALL = 0.25  # s: a tick this late means the ComMAg itself was not running
 _LEVEL = {
     State.HEALTHY: DiagnosticStatus.OK,
     State.SUSPECT: DiagnosticStatus.WARN,
@@ -100,6 +101,8 @@ class CommagNode(LifecycleNode):
         self._store_path: Path | None = None
         self._saver: store.Saver | None = None
         self._last_diag = 0.0
+        self._last_tick = time.monotonic()
+        self.stalls = 0  # ticks that came late by more than STALL
 
     # ---- lifecycle ---------------------------------------------------------
 
@@ -162,6 +165,7 @@ class CommagNode(LifecycleNode):
     def on_activate(self, state: LifecycleState) -> TransitionCallbackReturn:
         result = super().on_activate(state)
         self._active = True
+        self._last_tick = time.monotonic()
         self._timers = [self.create_timer(self._cfg.tick_period, self._on_tick)]
         self._publish_snapshot()
         self.get_logger().info("active")
@@ -231,6 +235,17 @@ class CommagNode(LifecycleNode):
     def _on_tick(self) -> None:
         try:
             now = time.monotonic()
+            # A tick much later than due means this process was not scheduled (a loaded machine):
+            # renewals are waiting unread, so nobody has missed a lease by that much.
+            late = now - self._last_tick - self._cfg.tick_period
+            self._last_tick = now
+            if late > STALL:
+                self._registry.pause(late)
+                self.stalls += 1
+                self.get_logger().warning(
+                    f"the ComMAg was not scheduled for {late:.2f} s: leases extended by as much",
+                    throttle_duration_sec=5.0,
+                )
             events = []
             for name, code in self._launcher.poll():
                 events += self._registry.launch_exited(name, code, now=now)

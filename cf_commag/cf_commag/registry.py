@@ -184,6 +184,16 @@ class Registry:
 
     # ---- fault management ---------------------------------------------------
 
+    def pause(self, seconds: float) -> None:
+        """The ComMAg itself could not run for ``seconds``: renewals that came meanwhile are still queued.
+
+        Every lease and start-up grace is extended by that time, so that components are not blamed
+        (and relaunched) for the ComMAg's own stall.
+        """
+        for entry in self.directory.entries():
+            entry.last_renewal += seconds
+            entry.launch_started_at += seconds
+
     def tick(self, now: float) -> list[Event]:
         """Advance every component's state to time ``now``."""
         events: list[Event] = []

@@ -231,3 +231,14 @@ def test_a_newer_process_fences_off_the_older_one():
     assert reg.register(rec(metadata=(("incarnation", "pid2-b"),)), now=0.5)[0].accepted
     result, _ = reg.register(rec(metadata=(("incarnation", "pid1-a"),)), now=0.6)
     assert not result.accepted and result.reason.startswith("superseded")
+
+
+def test_a_stall_of_the_commag_itself_costs_nobody_its_lease(reg):
+    reg.register(rec("blue_7_kick", lease_period=1.0), now=0.0)
+    assert reg.tick(0.9) == []
+    # The ComMAg was not scheduled from 0.9 to 2.5 s: a renewal sent at 1.2 s is still queued.
+    reg.pause(1.6)
+    assert reg.tick(2.5) == []
+    result, _ = reg.register(rec("blue_7_kick", lease_period=1.0), now=2.51)  # the queued renewal, read now
+    assert result.reason == "renewed"
+    assert kinds(reg.tick(3.6)) == [EventKind.SUSPECT, EventKind.RELAUNCHING]  # really silent now
