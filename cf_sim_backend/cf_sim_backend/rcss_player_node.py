@@ -48,9 +48,7 @@ PARAMS = {
     "goalie": (False, "connect as the goalkeeper"),
     "number": (0, "the shirt number to take back after a relaunch"),
     "reconnect": (False, "take over player <number> with (reconnect ...) instead of (init ...)"),
-    "side": ("", "after a relaunch: our side (l or r), with number, local_port and player_port"),
     "local_port": (0, "UDP port to bind (0: any); a relaunch binds its predecessor's"),
-    "player_port": (0, "after a relaunch: the server's port for this player (skips init)"),
     "version": (19, "player protocol version"),
     "synch_wait": (0.03, "synch mode: seconds to wait for a decision's request before (done)"),
     "see_wait": (0.015, "real time: seconds to wait for a due see after sense_body"),
@@ -86,7 +84,8 @@ class RcssPlayerNode(Node):
         # No SO_REUSEADDR: binding a predecessor's port succeeds only once that process is gone,
         # so a relaunched adapter can never steal the player from one that is still alive.
         self.sock.bind(("127.0.0.1" if host.startswith("127.") else "", int(self.p["local_port"])))
-        self.heard_any = False
+        self.attached = False  # the server talks to us as its player
+        self.last_hello = time.monotonic()
         self.queue: deque[tuple[bytes, tuple]] = deque()
         self.wake = self.create_guard_condition(self._drain)
         self.act_timer = self.create_timer(float(self.p["synch_wait"]), self._on_act_timer)
@@ -95,25 +94,20 @@ class RcssPlayerNode(Node):
         self.see_timer.cancel()
         self.create_timer(1.0, self._watch)
         threading.Thread(target=self._read, name="rcss-udp", daemon=True).start()
-        if self.p["side"] and int(self.p["number"]) and int(self.p["player_port"]):
-            self._take_over()
-        else:
-            self._hello()
+        self._hello()
+        if self.p["reconnect"] and int(self.p["number"]):
+            # A relaunch registers at once (within the ComMAg's start-up grace), even while the
+            # server still refuses to give the player back (it does so only outside play_on).
+            self.get_logger().info(f"asking for {self.session.team} {self.p['number']} back (reconnect)")
+            self._join()
 
     # ---- the server -------------------------------------------------------------
 
     def _hello(self) -> None:
+        self.last_hello = time.monotonic()
         number = int(self.p["number"])
         text = self.session.reconnect(number) if self.p["reconnect"] and number else self.session.hello()
         self._send(text, to=self.server)
-
-    def _take_over(self) -> None:
-        """A relaunch: carry on as the player a dead predecessor was, on its ports; the server sees no change."""
-        b = self.session.belief
-        b.side, b.number = Side(self.p["side"]), int(self.p["number"])
-        self.server = (self.server[0], int(self.p["player_port"]))
-        self.get_logger().info(f"taking over {self.session.team} {b.number} from a previous process")
-        self._join()
 
     def _send(self, text: str, to: tuple | None = None) -> None:
         try:
@@ -137,9 +131,12 @@ class RcssPlayerNode(Node):
 
     def _on_datagram(self, data: bytes, addr: tuple) -> None:
         self.last_heard = time.monotonic()
-        self.heard_any = True
         joined = bool(self.agents)
         kind = self.session.receive(data)
+        if kind in ("sense_body", "see", "think") and not self.attached:
+            self.server = addr  # a relaunch on its predecessor's port: the server talks to us already
+        if kind in ("init", "reconnect", "sense_body", "see", "think"):
+            self.attached = True
         if kind in ("init", "reconnect") and self.session.ready:
             self.server = addr  # after init the server talks from a port of its own for this player
             if not joined:
@@ -156,7 +153,9 @@ class RcssPlayerNode(Node):
             self._perceive()
             self.waiting = True
             self.act_timer.reset()
-        elif kind == "sense_body" and not self.synch:
+        if kind == "sense_body" and self.session.stats["cycles"] % 50 == 0:
+            self._write_stats()
+        if kind == "sense_body" and not self.synch:
             if self.session.belief.expects_see():
                 self.see_timer.reset()
             else:
@@ -170,12 +169,12 @@ class RcssPlayerNode(Node):
     def _join(self) -> None:
         b = self.session.belief
         team, n = self.session.team, b.number
-        self.get_logger().info(f"playing as {team} {n} on side {b.side.value}")
-        # A relaunch takes over on our ports (no init: the server keeps the player); if it hears
-        # nothing it falls back to (reconnect ...).
+        self.get_logger().info(f"playing as {team} {n} on side {b.side.value if b.side else '?'}")
+        # A relaunch asks for the player back with (reconnect ...) from our UDP port: it can bind
+        # that port only once this process is gone, so it never steals the player from a live one.
         port = self.sock.getsockname()[1]
-        launch = [*own_launch_command(), "--ros-args", "-p", f"number:={n}", "-p", f"side:={b.side.value}"]
-        launch += ["-p", f"local_port:={port}", "-p", f"player_port:={self.server[1]}", "-p", "reconnect:=true"]
+        launch = [*own_launch_command(), "--ros-args", "-p", f"number:={n}", "-p", "reconnect:=true"]
+        launch += ["-p", f"local_port:={port}"]
         common = {"team": team, "player_number": n, "lease": float(self.p["lease"]), "commag": self.p["commag"]}
         perception = Agent(
             self, name=f"{team}_{n}_perception", service_class="WorldModel", launch_command=launch, **common
@@ -188,12 +187,11 @@ class RcssPlayerNode(Node):
         self.agents.extend([perception, action])  # spin() holds this very list
 
     def _watch(self) -> None:
-        silent = time.monotonic() - self.last_heard
-        if silent > 2.0 and not self.session.ready:
-            self._hello()  # the server may not have been up yet
-        elif silent > 3.0 and not self.heard_any:
-            self.server = (self.server[0], int(self.p["port"]))
-            self._hello()  # took over, but the server does not talk to us: ask for the player back
+        now = time.monotonic()
+        silent = now - self.last_heard
+        if not self.attached and now - self.last_hello > 1.0:
+            # The server may not be up yet, or (a relaunch) refuses to reconnect during play_on: ask again.
+            self._hello()
         if silent > float(self.p["server_timeout"]) and not self.finished:
             self.get_logger().error(f"the server has been silent for {silent:.0f} s")
             self.finished = True
@@ -240,8 +238,6 @@ class RcssPlayerNode(Node):
                 responder.inform(f"(done {acted.name} :cycles {acted.cycles})")
             else:
                 responder.failure(acted.reason)
-        if self.session.stats["cycles"] % 50 == 0:
-            self._write_stats()
 
     # ---- the services ---------------------------------------------------------------
 

@@ -95,6 +95,8 @@ class Team:
             # A fresh registry per match: components of an earlier match must not be relaunched.
             argv += ["-p", f"persistence_path:={self.logs / 'registry.json'}", "-p", f"log_dir:={self.logs}"]
             argv += ["-p", "stop_launched_on_exit:=true"]  # relaunched components end with the team
+            # 23 processes on a small machine: a relaunched one may need more than 5 s to register.
+            argv += ["-p", f"startup_grace:={max(5.0, 3 * a.lease)}"]
             self.start("commag", argv)
         for n in range(1, a.players + 1):
             stats = ["-p", f"stats_file:={Path(a.stats_dir) / f'{a.team}_{n}.json'}"] if a.stats_dir else []
@@ -114,6 +116,11 @@ class Team:
         print(f"team {a.team}: {a.players} players and their decisions are up; logs in {self.logs}", flush=True)
         adapters = [p for name, p in self.procs.items() if name.endswith("_rcss_player")]
         while any(p.poll() is None for p in adapters):
+            self.executor.spin_once(timeout_sec=0.2)
+        # Adapters the ComMAg relaunched are not our children: let them finish (deregister) too.
+        ours = {f"{a.team}_{n}_perception" for n in range(1, a.players + 1)}
+        deadline = time.monotonic() + 10.0
+        while self.registered & ours and time.monotonic() < deadline:
             self.executor.spin_once(timeout_sec=0.2)
         ended = {name: p.returncode for name, p in self.procs.items() if name.endswith("_rcss_player")}
         killed = [name for name, code in ended.items() if code < 0]  # by a signal: the ComMAg relaunched them
