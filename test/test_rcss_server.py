@@ -59,6 +59,8 @@ def test_a_killed_adapter_is_relaunched_and_takes_its_player_over_mid_match(tmp_
     assert summary["killed"]["pid"] is not None and summary["killed"]["cycle"] >= 100
     assert summary["team_exit_codes"] == [0] and summary["server_exit_code"] == 0
     assert summary["relaunched"] == 1 and summary["withdrawn"] == 0
-    three = next(p for p in summary["players"] if p["number"] == 3)  # the stats of the relaunched process
-    assert three["mode"] == "time_over" and three["cycles"] >= 100 and three["body_commands"] > 0
+    # The stats of the relaunched process: back at the first stoppage after its relaunch (the server
+    # reconnects players only outside play_on), it played on to the end.
+    three = next(p for p in summary["players"] if p["number"] == 3)
+    assert three["mode"] == "time_over" and three["cycles"] >= 20 and three["body_commands"] > 0
     assert all(p["mode"] == "time_over" for p in summary["players"])
