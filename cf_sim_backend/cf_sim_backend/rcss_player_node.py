@@ -189,8 +189,10 @@ class RcssPlayerNode(Node):
     def _watch(self) -> None:
         now = time.monotonic()
         silent = now - self.last_heard
-        if not self.attached and now - self.last_hello > 1.0:
-            # The server may not be up yet, or (a relaunch) refuses to reconnect during play_on: ask again.
+        reconnecting = bool(self.p["reconnect"]) and int(self.p["number"]) > 0
+        if not self.attached and now - self.last_hello > (1.0 if reconnecting else 3.0):
+            # The server may not be up yet, or (a relaunch) refuses to reconnect during play_on: ask
+            # again. An (init ...) is repeated only after 3 s: each one that arrives takes a shirt number.
             self._hello()
         if silent > float(self.p["server_timeout"]) and not self.finished:
             self.get_logger().error(f"the server has been silent for {silent:.0f} s")
