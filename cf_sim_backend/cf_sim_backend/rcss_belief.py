@@ -170,8 +170,12 @@ class Belief:
         if len(msg) >= 3 and int(msg[1]) == self.number:
             self.type_id = int(msg[2])
 
+    def note_error(self, text: str) -> None:
+        """Keep the latest 20 errors (the server's, or messages that did not parse)."""
+        self.errors = [*self.errors[-19:], text]
+
     def _on_error(self, msg: list) -> None:
-        self.errors = [*self.errors[-19:], " ".join(str(x) for x in msg[1:])]
+        self.note_error(" ".join(str(x) for x in msg[1:]))
 
     _on_warning = _on_error
 

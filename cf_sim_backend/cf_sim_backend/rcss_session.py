@@ -92,7 +92,7 @@ class Session:
             msg = parse(data)
         except (LanguageError, UnicodeDecodeError) as exc:
             self.stats["bad_messages"] += 1
-            self.belief.errors = [*self.belief.errors[-19:], f"unreadable message: {exc}"]
+            self.belief.note_error(f"unreadable message: {exc}")
             return "bad"
         if not isinstance(msg, list) or not msg:
             self.stats["bad_messages"] += 1
