@@ -48,6 +48,7 @@ from cf_lang.taxonomy import Direction
 from .convert import directory_from_msg
 from .records import Directory, Entry, Query, valid_agent_name
 from .registry import INCARNATION_KEY, SUPERSEDED
+from .samples import pack_lines, sample_messages
 
 INBOX_QOS = QoSProfile(
     history=HistoryPolicy.KEEP_ALL,
@@ -84,9 +85,45 @@ class Outbox:
         self._held: dict[str, list[tuple[float, str]]] = {}
         self._matched: dict[str, object] = {}  # receivers whose inbox was seen matched: publish at once
         self._lock = threading.Lock()  # send() may run on another thread than flush()
+        self._batch: dict[str, list[str]] | None = None
         self.undeliverable = 0
 
     def send(self, receiver: str, text: str) -> None:
+        """Publish ``text`` (one or more ACL messages, one per line) to ``receiver``'s inbox.
+
+        Inside :meth:`batch`, messages for the same receiver are collected and
+        go out together as one sample when the batch ends.
+        """
+        if self._batch is not None:
+            with self._lock:
+                if self._batch is not None:
+                    self._batch.setdefault(receiver, []).append(text)
+                    return
+        self._send(receiver, text)
+
+    @contextlib.contextmanager
+    def batch(self):
+        """Collect what is sent inside the block; publish one sample per receiver at its end.
+
+        Each DDS sample costs tens of microseconds to publish and to take, whatever
+        its size, so a burst of replies goes out as one sample per receiver.
+        Blocks may nest; the outermost one publishes.
+        """
+        with self._lock:
+            outer = self._batch is None
+            if outer:
+                self._batch = {}
+        try:
+            yield self
+        finally:
+            if outer:
+                with self._lock:
+                    collected, self._batch = self._batch, None
+                for receiver, texts in collected.items():
+                    for chunk in pack_lines(texts):
+                        self._send(receiver, chunk)
+
+    def _send(self, receiver: str, text: str) -> None:
         pub = self._matched.get(receiver)
         if pub is not None and pub.get_subscription_count() > 0:
             pub.publish(String(data=text))
@@ -117,15 +154,16 @@ class Outbox:
         for receiver, held in list(self._held.items()):
             pub = self._publishers[receiver]
             if pub.get_subscription_count() > 0:
-                for _, text in held:
+                for text in pack_lines([text for _, text in held]):
                     pub.publish(String(data=text))
                 del self._held[receiver]
                 self._matched[receiver] = pub
             elif now - held[0][0] > self._hold:
                 fresh = [(t, m) for t, m in held if now - t <= self._hold]
-                self.undeliverable += len(held) - len(fresh)
+                dropped = sum(m.count("\n") + 1 for t, m in held if now - t > self._hold)
+                self.undeliverable += dropped
                 self._node.get_logger().warning(
-                    f"no inbox of {receiver!r} appeared: {len(held) - len(fresh)} message(s) dropped",
+                    f"no inbox of {receiver!r} appeared: {dropped} message(s) dropped",
                     throttle_duration_sec=5.0,
                 )
                 if fresh:
@@ -135,7 +173,8 @@ class Outbox:
 
     @property
     def held(self) -> int:
-        return sum(len(h) for h in self._held.values())
+        """Messages waiting for their receiver's inbox to appear."""
+        return sum(m.count("\n") + 1 for h in self._held.values() for _, m in h)
 
     def wait_acked(self, timeout: float) -> bool:
         deadline = time.monotonic() + timeout
@@ -144,6 +183,14 @@ class Outbox:
             if not pub.wait_for_all_acked(Duration(nanoseconds=int(left * 1e9))):
                 return False
         return True
+
+
+def _parses(text: str) -> bool:
+    try:
+        acl.parse(text)
+    except LanguageError:
+        return False
+    return True
 
 
 class Refuse(Exception):
@@ -461,9 +508,28 @@ class Agent:
         self._handlers[protocol] = handler
 
     def _on_inbox(self, msg: String) -> None:
+        texts = sample_messages(msg.data)
+        if len(texts) == 1:
+            self._on_text(texts[0])
+            return
+        messages = []
+        for text in texts:
+            try:
+                messages.append(acl.parse(text))
+            except LanguageError:
+                messages.append(text)
+        if all(type(m) is str for m in messages) and _parses(msg.data):
+            # Not a batch but one message written over several lines (by a foreign sender).
+            self._on_text(msg.data)
+            return
+        with self._outbox.batch():  # what the handlers answer goes out as one sample per receiver
+            for message in messages:
+                self._on_text(message)
+
+    def _on_text(self, text: str | AclMessage) -> None:
         self.counters["received"] += 1
         try:
-            message = acl.parse(msg.data)
+            message = text if type(text) is AclMessage else acl.parse(text)
         except LanguageError as exc:
             self.counters["bad"] += 1
             self._log.warning(f"unreadable message: {exc}", throttle_duration_sec=2.0)

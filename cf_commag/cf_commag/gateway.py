@@ -10,8 +10,9 @@ that the ROS node implements, and that tests replace with a fake.
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import hmac
+import socket
+import threading
 import time
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
@@ -24,6 +25,7 @@ from cf_lang.taxonomy import Direction
 
 from .records import Entry, Query, Record, Transport, valid_agent_name
 from .registry import Result
+from .samples import pack_lines
 
 PROTOCOL_VERSION = 1
 _K_SENDER = Keyword("sender")
@@ -39,7 +41,9 @@ class Bus(Protocol):
     def lookup(self, query: Query) -> Awaitable[list[Entry]]: ...
     def known(self, name: str) -> bool: ...
     def publish(self, receiver: str, text: str) -> None: ...
-    def open_inbox(self, name: str, deliver: Callable[[str], None]) -> None: ...
+    def open_inbox(self, name: str, deliver: Callable[[str], bool]) -> None:
+        """Start delivering ``name``'s inbox samples; ``deliver`` may be called from any thread."""
+
     def close_inbox(self, name: str) -> None: ...
     def watch_events(self, key: object, deliver: Callable[[str], None] | None) -> None: ...
 
@@ -110,10 +114,17 @@ def entry_form(entry: Entry) -> list:
 class Session:
     """One TCP agent: its protocol state and what it holds in the framework."""
 
-    def __init__(self, gateway: Gateway, peer: tuple[str, int], send: Callable[[str], bool]):
+    def __init__(
+        self,
+        gateway: Gateway,
+        peer: tuple[str, int],
+        send: Callable[[str], bool],
+        deliver: Callable[[str], bool] | None = None,
+    ):
         self.gateway = gateway
         self.peer = peer
-        self.send = send
+        self.send = send  # the gateway's own answers (loop thread)
+        self.deliver = deliver or send  # messages from the inbox (any thread)
         self.name: str | None = None
         self.registered: Record | None = None
         self.last_seen = time.monotonic()
@@ -121,8 +132,10 @@ class Session:
 
     # ---- lines in -----------------------------------------------------------
 
-    async def handle(self, line: bytes) -> bool:
-        """Handle one line; return False when the session should end."""
+    def handle(self, line: bytes) -> bool | Awaitable[bool]:
+        """Handle one line: True to go on, False to end the session, or an awaitable
+        giving one of those for commands that wait for the ComMAg (the lines after
+        it wait too, so an agent's lines take effect in order)."""
         self.last_seen = time.monotonic()
         line = line.rstrip(b"\r\n")
         if not line.strip():
@@ -152,9 +165,9 @@ class Session:
         except ValueError as exc:
             self.send(form("failure", in_reply_to=head, reason=str(exc)))
             return True
-        return await handler(self, params)
+        return handler(self, params)
 
-    async def _hello(self, params: dict) -> bool:
+    def _hello(self, params: dict) -> bool:
         if self.name is not None:
             self.send(form("failure", in_reply_to="hello", reason=f"already connected as {self.name}"))
             return True
@@ -171,7 +184,7 @@ class Session:
             return True
         self.name = name
         self.gateway.sessions[name] = self
-        self.gateway.bus.open_inbox(name, self.send)
+        self.gateway.bus.open_inbox(name, self.deliver)
         self.send(
             form(
                 "welcome",
@@ -235,11 +248,11 @@ class Session:
         self.send(dumps([Symbol("providers"), *[entry_form(e) for e in entries]]))
         return True
 
-    async def _ping(self, params: dict) -> bool:
+    def _ping(self, params: dict) -> bool:
         self.send(form("pong"))
         return True
 
-    async def _events(self, params: dict) -> bool:
+    def _events(self, params: dict) -> bool:
         on = str(params.get("on", "true")).lower() != "false"
         self.gateway.bus.watch_events(self, self.send if on else None)
         self.send(form("events", on=Symbol("true" if on else "false")))
@@ -252,7 +265,7 @@ class Session:
         self.send(form("bye"))
         return False
 
-    _COMMANDS: dict[str, Callable[[Session, dict], Awaitable[bool]]] = {
+    _COMMANDS: dict[str, Callable[[Session, dict], bool | Awaitable[bool]]] = {
         "hello": _hello,
         "register": _register,
         "lookup": _lookup,
@@ -283,8 +296,7 @@ class Session:
             sexp = [sexp[0], _K_SENDER, AgentId(self.name).to_sexp(), *sexp[1:]]
         text = dumps(sexp)
         for receiver in msg.receivers:
-            self.gateway.bus.publish(receiver.name, text)
-        self.gateway.relayed += 1
+            self.gateway.relay(receiver.name, text)
 
     # ---- end ----------------------------------------------------------------
 
@@ -314,21 +326,41 @@ class Gateway:
         self.slow_disconnects = 0
         self.port: int | None = None
         self._server: asyncio.base_events.Server | None = None
+        self._open: set[_Connection] = set()
+        self._outgoing: dict[str, list[str]] = {}
 
     async def start(self) -> int:
         """Listen; return the bound port (useful with port 0)."""
-        self._server = await asyncio.start_server(
-            self._serve, self.config.host, self.config.port, limit=self.config.max_line_bytes + 1
-        )
+        loop = asyncio.get_running_loop()
+        self._server = await loop.create_server(lambda: _Connection(self), self.config.host, self.config.port)
         self.port = self._server.sockets[0].getsockname()[1]
         return self.port
 
     async def stop(self) -> None:
         if self._server is not None:
             self._server.close()
-            for session in list(self.sessions.values()):
-                session.release()
+            for conn in list(self._open):
+                conn.finish(abort=True)
             await self._server.wait_closed()
+
+    def relay(self, receiver: str, text: str) -> None:
+        """Queue an ACL message for a receiver's inbox, published at the end of this loop turn.
+
+        Everything the connections brought in during one turn of the loop goes
+        out as one sample per receiver: a DDS sample costs the same tens of
+        microseconds whatever it holds, and 200 agents talking to one
+        teammate then cost it a few samples instead of 200.
+        """
+        if not self._outgoing:
+            asyncio.get_running_loop().call_soon(self.flush_relayed)
+        self._outgoing.setdefault(receiver, []).append(text)
+        self.relayed += 1
+
+    def flush_relayed(self) -> None:
+        outgoing, self._outgoing = self._outgoing, {}
+        for receiver, texts in outgoing.items():
+            for chunk in pack_lines(texts):
+                self.bus.publish(receiver, chunk)
 
     def due_renewals(self, now: float) -> list[Record]:
         """Records whose agents showed life within their lease: renew those, and only those.
@@ -342,98 +374,231 @@ class Gateway:
             if s.registered is not None and now - s.last_seen <= s.registered.lease_period
         ]
 
-    async def _serve(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
-        peer = writer.get_extra_info("peername")[:2]
-        if self.connections >= self.config.max_connections:
-            writer.write((form("error", reason="too many connections") + "\n").encode())
-            await _close(writer)
+
+class _Connection(asyncio.Protocol):
+    """One TCP connection: splits the byte stream into lines for its session and writes its answers.
+
+    A low-level protocol rather than streams: one read brings many lines, which
+    are handled in one go (and their ACL messages relayed together), and an
+    answer is written straight to the transport without a writer task.
+    """
+
+    def __init__(self, gateway: Gateway):
+        self.gateway = gateway
+        self.config = gateway.config
+        self.transport: asyncio.Transport | None = None
+        self.session: Session | None = None
+        self.buffer = bytearray()
+        self.busy = False  # a command waits for the ComMAg; later lines wait for it
+        self.eof = False
+        self.closing = False  # nothing more is read or written
+        self.finished = False
+        self.counted = False
+        self.backlog = 0  # lines written since the transport's buffer was last empty
+        self.hello_timer: asyncio.TimerHandle | None = None
+        self.command: asyncio.Future | None = None
+        self.loop: asyncio.AbstractEventLoop | None = None
+        self.direct: socket.socket | None = None
+        self.lock = threading.Lock()  # one writer at a time: the loop thread or a delivering one
+        self.deferred: list[bytes] = []  # bytes waiting for the loop thread, in order
+
+    # ---- asyncio callbacks --------------------------------------------------
+
+    def connection_made(self, transport: asyncio.Transport) -> None:
+        self.transport = transport
+        gateway = self.gateway
+        gateway._open.add(self)
+        if gateway.connections >= self.config.max_connections:
+            transport.write((form("error", reason="too many connections") + "\n").encode())
+            self.finish()
             return
-        self.connections += 1
-        queue: asyncio.Queue[str | None] = asyncio.Queue()
-        state = {"dropped": False}
+        gateway.connections += 1
+        self.counted = True
+        peer = transport.get_extra_info("peername")[:2]
+        self.session = Session(gateway, peer, self.send, self.deliver)
+        self.loop = asyncio.get_running_loop()
+        # A second handle on the socket, ours, so that inbox samples arriving on the ROS
+        # executor's thread are written at once, without waking the loop (see deliver).
+        self.direct = transport.get_extra_info("socket").dup()
+        self.direct.setblocking(False)
+        self.hello_timer = self.loop.call_later(self.config.hello_timeout, self._hello_overdue)
 
-        def send(text: str) -> bool:
-            # Called from the loop thread only. A reader that falls behind by more than
-            # max_queue lines or max_pending_bytes unsent is disconnected, instead of
-            # slowing everyone down or losing messages silently.
-            if state["dropped"]:
-                return False
-            if queue.qsize() >= self.config.max_queue or (
-                writer.transport.get_write_buffer_size() > self.config.max_pending_bytes
-            ):
-                state["dropped"] = True
-                self.slow_disconnects += 1
-                queue.put_nowait(None)
-                # Give the writer a moment to say why, then cut the connection for good.
-                asyncio.get_running_loop().call_later(1.0, writer.transport.abort)
-                return False
-            queue.put_nowait(text)
-            return True
+    def data_received(self, data: bytes) -> None:
+        if self.closing:
+            return
+        self.buffer += data
+        if self.busy:
+            if len(self.buffer) > 2 * self.config.max_line_bytes:
+                self.transport.pause_reading()  # resumed when the command is answered
+            return
+        self._process()
 
-        session = Session(self, peer, send)
-        writer_task = asyncio.create_task(self._write(writer, queue, state))
+    def eof_received(self) -> bool:
+        self.eof = True
+        if not self.busy:
+            self._process()
+        return True  # we close once the last answers are written
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self.closing = True
+        with self.lock:
+            if self.direct is not None:
+                self.direct.close()
+        self._release()
+        self.gateway._open.discard(self)
+
+    # ---- lines in -----------------------------------------------------------
+
+    def _process(self) -> None:
+        buffer = self.buffer
+        limit = self.config.max_line_bytes
+        start = 0
         try:
-            await self._read(reader, session, state)
-        except FramingError as exc:
-            send(form("error", reason=str(exc)))
-        except (ConnectionError, asyncio.IncompleteReadError):
-            pass
-        except Exception as exc:  # a bug must cost one connection, never the gateway
-            self.log(f"session {session.name or peer}: {exc!r}")
-            send(form("error", reason=f"internal error: {exc!r}"))
-        finally:
-            session.release()
-            self.connections -= 1
-            queue.put_nowait(None)
-            try:
-                await asyncio.wait_for(writer_task, 2.0)
-            except TimeoutError:
-                writer.transport.abort()
-            await _close(writer)
-
-    async def _read(self, reader: asyncio.StreamReader, session: Session, state: dict) -> None:
-        timeout = self.config.hello_timeout
-        while not state["dropped"]:
-            try:
-                if session.name is None:
-                    line = await asyncio.wait_for(reader.readuntil(b"\n"), timeout)
-                else:
-                    line = await reader.readuntil(b"\n")
-            except TimeoutError:
-                raise FramingError(f"no hello within {timeout} s") from None
-            except asyncio.LimitOverrunError:
-                raise FramingError(f"line longer than {self.config.max_line_bytes} bytes") from None
-            except asyncio.IncompleteReadError as exc:
-                if exc.partial.strip():
-                    raise FramingError("connection closed in the middle of a line") from None
-                return
-            if not await session.handle(line):
-                return
-
-    async def _write(self, writer: asyncio.StreamWriter, queue: asyncio.Queue, state: dict) -> None:
-        try:
-            while True:
-                batch = [await queue.get()]
-                while not queue.empty() and len(batch) < 256:  # one write call for what is waiting
-                    batch.append(queue.get_nowait())
-                end = batch.index(None) if None in batch else len(batch)
-                if end:
-                    writer.write("\n".join(batch[:end]).encode() + b"\n")
-                if end < len(batch):
-                    if state["dropped"]:
-                        writer.write(
-                            (form("error", reason="too slow: outbound queue full, disconnecting") + "\n").encode()
-                        )
+            while not self.busy and not self.closing:
+                end = buffer.find(b"\n", start)
+                if end < 0:
+                    break
+                if end - start > limit:
+                    self._framing_error(f"line longer than {limit} bytes")
                     return
-                if writer.transport.get_write_buffer_size() > self.config.max_pending_bytes // 4:
-                    await writer.drain()
-        except (ConnectionError, RuntimeError):
-            state["dropped"] = True
+                line = bytes(buffer[start:end])
+                start = end + 1
+                result = self.session.handle(line)
+                if result is False:
+                    self.finish()
+                elif result is not True:
+                    self.busy = True
+                    self.command = asyncio.ensure_future(self._wait_for(result))  # referenced: never collected
+            del buffer[:start]
+            if self.closing or self.busy:
+                return
+            if len(buffer) > limit:
+                self._framing_error(f"line longer than {limit} bytes")
+            elif self.eof:
+                if buffer.strip():
+                    self._framing_error("connection closed in the middle of a line")
+                else:
+                    self.finish()
+        except Exception as exc:  # a bug must cost one connection, never the gateway
+            name = self.session.name if self.session else None
+            self.gateway.log(f"session {name or self.transport.get_extra_info('peername')}: {exc!r}")
+            self.send(form("error", reason=f"internal error: {exc!r}"))
+            self.finish()
 
+    async def _wait_for(self, answer: Awaitable[bool]) -> None:
+        try:
+            go_on = await answer
+        except Exception as exc:
+            self.gateway.log(f"session {self.session.name}: {exc!r}")
+            self.send(form("error", reason=f"internal error: {exc!r}"))
+            go_on = False
+        self.busy = False
+        if not go_on:
+            self.finish()
+            return
+        if not self.closing:
+            self.transport.resume_reading()
+            self._process()
 
-async def _close(writer: asyncio.StreamWriter) -> None:
-    with contextlib.suppress(ConnectionError, TimeoutError, RuntimeError):
-        await asyncio.wait_for(writer.drain(), 1.0)
-    writer.close()
-    with contextlib.suppress(ConnectionError, TimeoutError, RuntimeError):
-        await asyncio.wait_for(writer.wait_closed(), 1.0)
+    def _hello_overdue(self) -> None:
+        if self.session is not None and self.session.name is None and not self.closing:
+            self.send(form("error", reason=f"no hello within {self.config.hello_timeout} s"))
+            self.finish()
+
+    def _framing_error(self, reason: str) -> None:
+        self.send(form("error", reason=reason))
+        self.finish()
+
+    # ---- lines out ----------------------------------------------------------
+
+    def send(self, text: str) -> bool:
+        """Write one or more lines; on the loop thread (the gateway's own answers)."""
+        with self.lock:
+            if self.deferred:  # keep the byte order: after what waits already
+                self.deferred.append(text.encode() + b"\n")
+                return not self.closing
+            return self._write(text.encode() + b"\n")
+
+    def deliver(self, text: str) -> bool:
+        """Write inbox messages (one or more lines); from any thread.
+
+        The common case, nothing waiting to be written, sends straight on the
+        socket from the calling thread: waking the loop thread for it costs more
+        than the rest of the gateway's work on a message. A partial send, or
+        anything already waiting, goes through the loop thread in order.
+        """
+        data = text.encode() + b"\n"
+        with self.lock:
+            if self.closing:
+                return False
+            if not self.deferred and self.transport.get_write_buffer_size() == 0:
+                try:
+                    sent = self.direct.send(data)
+                except (BlockingIOError, InterruptedError):
+                    sent = 0
+                except OSError:
+                    return False  # the connection is gone; connection_lost releases it
+                if sent == len(data):
+                    self.backlog = 0
+                    return True
+                data = data[sent:]
+            self.deferred.append(data)
+            first = len(self.deferred) == 1
+        if first:
+            self.loop.call_soon_threadsafe(self._write_deferred)
+        return True
+
+    def _write_deferred(self) -> None:
+        with self.lock:
+            data, self.deferred = b"".join(self.deferred), []
+            if data:
+                self._write(data)
+
+    def _write(self, data: bytes) -> bool:
+        """Write through the transport, holding the lock, on the loop thread.
+
+        A reader that falls behind by more than max_queue lines or
+        max_pending_bytes unsent is disconnected, instead of slowing everyone
+        down or losing messages silently.
+        """
+        if self.closing:
+            return False
+        transport = self.transport
+        pending = transport.get_write_buffer_size()
+        if pending == 0:
+            self.backlog = 0
+        self.backlog += data.count(b"\n")
+        if self.backlog > self.config.max_queue or pending + len(data) > self.config.max_pending_bytes:
+            self.gateway.slow_disconnects += 1
+            transport.write((form("error", reason="too slow: outbound queue full, disconnecting") + "\n").encode())
+            self.loop.call_soon(self.finish)  # not under the lock
+            self.closing = True
+            return False
+        transport.write(data)
+        return True
+
+    # ---- end ----------------------------------------------------------------
+
+    def finish(self, abort: bool = False) -> None:
+        """Release the session; close once what was written has gone (at most 1 s later)."""
+        if self.finished and not abort:
+            return
+        self.finished = self.closing = True
+        self._release()
+        transport = self.transport
+        if abort:
+            transport.abort()
+            return
+        transport.close()
+        # A peer that never reads would keep the socket open for ever.
+        asyncio.get_running_loop().call_later(1.0, transport.abort)
+
+    def _release(self) -> None:
+        if self.hello_timer is not None:
+            self.hello_timer.cancel()
+            self.hello_timer = None
+        if self.session is not None:
+            self.session.release()
+        if self.counted:
+            self.counted = False
+            self.gateway.connections -= 1

@@ -6,7 +6,6 @@ import asyncio
 import sys
 import threading
 import time
-from collections import deque
 from collections.abc import Callable
 from pathlib import Path
 
@@ -160,20 +159,11 @@ class GatewayNode(Node):
     def publish(self, receiver: str, text: str) -> None:
         self._outbox.send(receiver, text)
 
-    def open_inbox(self, name: str, deliver: Callable[[str], None]) -> None:
-        # Messages cross to the asyncio thread in batches: one wake-up of the loop
-        # carries everything that arrived meanwhile.
-        pending: deque[str] = deque()
-
-        def drain() -> None:
-            while pending:
-                deliver(pending.popleft())
-
+    def open_inbox(self, name: str, deliver: Callable[[str], bool]) -> None:
         def on_message(msg: String) -> None:
-            was_empty = not pending
-            pending.append(msg.data)
-            if was_empty:
-                self._to_loop(drain)
+            # On the executor thread: the gateway writes it to the socket from here.
+            # A sample may hold several messages, one per line: the gateway's wire format too.
+            deliver(msg.data)
 
         def create() -> None:
             self._inboxes[name] = self.create_subscription(String, inbox_topic(name), on_message, INBOX_QOS)

@@ -167,3 +167,30 @@ def test_failover_to_redundant_provider(ros, unique, tmp_path):
     done = first.close()
     ros.spin_until(done.done, what="deregistration")
     ros.spin_until(lambda: user.provider("Dribble", team="blue", player_number=5) == second.me.name, what="failover")
+
+
+def test_a_sample_may_carry_several_messages(ros, unique, tmp_path):
+    commag = start_commag(ros, unique, tmp_path)
+    server = agent(ros, f"server_{unique}", "Action", commag)
+    seen = []
+    server.serve("fipa-request", lambda msg, responder: seen.append(msg.content) or "(ok)")
+    raw = ros.node(f"raw_{unique}")
+    pub = raw.create_publisher(String, inbox_topic(server.me.name), 10)
+    answers = []
+    raw.create_subscription(String, inbox_topic(f"raw_{unique}"), answers.append, 10)
+    ros.spin_until(lambda: raw.count_subscribers(inbox_topic(server.me.name)) > 0)
+    requests = [
+        f'(request :sender raw_{unique} :receiver {server.me.name} :content "(exec Player kick :power {i})" '
+        f":protocol fipa-request :conversation-id c{i})"
+        for i in range(3)
+    ]
+    # Three requests and a bad line in one sample: the bad one is counted, the others served.
+    pub.publish(String(data="\n".join([requests[0], "(((", *requests[1:]])))
+    # A foreign sender's single message written over several lines still reads as one.
+    pub.publish(String(data=requests[0].replace(" :content", "\n  :content").replace("c0", "c9")))
+    ros.spin_until(lambda: len(seen) == 4, what="all requests served")
+    assert seen == [f"(exec Player kick :power {i})" for i in (0, 1, 2, 0)]
+    assert server.counters["bad"] == 1
+    # The three answers of the batch went back to us together, as one sample.
+    ros.spin_until(lambda: sum(len(a.data.split("\n")) for a in answers) >= 4, what="answers")
+    assert len(answers[0].data.split("\n")) == 3

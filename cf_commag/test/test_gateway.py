@@ -284,3 +284,38 @@ def test_mutated_frames(server, frame, at, junk):
     deadline = time.monotonic() + 5
     while "mut" in server.gateway.sessions and time.monotonic() < deadline:
         time.sleep(0.01)
+
+
+def test_a_burst_goes_out_as_one_sample_per_receiver(server):
+    with server.client("alice"), server.client("carol"):
+        sock = server.raw()
+        burst = b"".join(
+            b'(inform :receiver %s :content "%d")\n' % (to, i) for i in range(6) for to in (b"alice", b"carol")
+        )
+        sock.sendall(b"(hello :name bob)\n" + burst + b"(ping)\n")
+        got = until_pong(sock)
+        assert got[0].startswith("(welcome") and got[-1] == "(pong)"
+        samples = {to: [t for r, t in server.bus.published if r == to] for to in ("alice", "carol")}
+        for to, texts in samples.items():
+            lines_ = [line for t in texts for line in t.split("\n")]
+            assert [line.rsplit('"', 2)[1] for line in lines_] == [str(i) for i in range(6)], to
+        # One read brought the whole burst, so each receiver got it in fewer samples than messages.
+        assert len(samples["alice"]) < 6 and len(samples["carol"]) < 6
+        sock.close()
+
+
+def test_inbox_samples_delivered_from_another_thread_arrive_whole_and_in_order(server):
+    with server.client("alice") as alice:
+        deliver = server.bus.inboxes["alice"]
+        sent = [f'(inform :sender bob :receiver alice :content "{i}")' for i in range(3000)]
+
+        def ros_thread():  # like the gateway node's executor thread
+            for i in range(0, len(sent), 3):
+                deliver("\n".join(sent[i : i + 3]))
+
+        t = threading.Thread(target=ros_thread)
+        t.start()
+        got = [alice.receive().content for _ in range(len(sent))]
+        t.join()
+        assert got == [str(i) for i in range(3000)]
+        alice.ping()  # and the gateway's own answers still come through
