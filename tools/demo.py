@@ -32,6 +32,7 @@ from std_msgs.msg import String
 
 from cf_commag.client import INBOX_QOS, SNAPSHOT_QOS, inbox_topic
 from cf_commag.commag_node import EVENTS_QOS
+from cf_commag.samples import sample_messages
 from cf_interfaces.msg import Registry, RegistryEvent
 from cf_sim_backend.report import write_report
 from cf_sim_backend.topics import STATE_QOS
@@ -109,8 +110,8 @@ class Demo:
                     String, inbox_topic(rec.name), self._count, INBOX_QOS
                 )
 
-    def _count(self, _msg: String) -> None:
-        self.messages += 1
+    def _count(self, msg: String) -> None:
+        self.messages += len(sample_messages(msg.data))  # a sample may carry several
 
     def on_state(self, msg: String) -> None:
         snap = json.loads(msg.data)

@@ -440,7 +440,7 @@ class Agent:
 
     def send(self, msg: AclMessage) -> None:
         """Publish a message to each receiver's inbox."""
-        text = acl.to_text(msg if msg.sender else msg.with_(sender=self.me))
+        text = acl.to_text(msg, sender=self.me)  # our name unless the message gives one
         for receiver in msg.receivers:
             if not valid_agent_name(receiver.name):
                 self._log.warning(f"cannot send to {receiver.name!r}: not an agent name")

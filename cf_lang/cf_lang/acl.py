@@ -122,14 +122,22 @@ _SEQUENCE = Symbol("sequence")
 _K_NAME = Keyword("name")
 _K_ADDRESSES = Keyword("addresses")
 _K_RESOLVERS = Keyword("resolvers")
+_K_NAME_TEXT = ":name"
 _WORD_RE = re.compile(r"""[^\s()"#0-9:;-][^\s()";]*""")
 
 
 def _word(text: str):
     """A FIPA word if the text is one, else a string (so it reads back the same)."""
-    if _WORD_RE.fullmatch(text):
-        return str.__new__(Symbol, text)
-    return text
+    word = _WORDS.get(text)
+    if word is not None:
+        return word
+    word = str.__new__(Symbol, text) if _WORD_RE.fullmatch(text) else text
+    if len(_WORDS) < 4096:  # agent names, languages, protocols: a small set, written again and again
+        _WORDS[text] = word
+    return word
+
+
+_WORDS: dict[str, object] = {}
 
 
 # ---- date-times ---------------------------------------------------------------
@@ -162,37 +170,54 @@ def parse_datetime(text: str) -> float:
 # ---- writing ------------------------------------------------------------------
 
 
-def to_sexp(msg: AclMessage) -> list:
+_K_SENDER = Keyword("sender")
+_K_RECEIVER = Keyword("receiver")
+_K_REPLY_TO = Keyword("reply-to")
+_K_CONTENT = Keyword("content")
+_K_REPLY_BY = Keyword("reply-by")
+_K_LANGUAGE = Keyword("language")
+_K_ENCODING = Keyword("encoding")
+_K_ONTOLOGY = Keyword("ontology")
+_K_PROTOCOL = Keyword("protocol")
+_K_CONVERSATION_ID = Keyword("conversation-id")
+_K_REPLY_WITH = Keyword("reply-with")
+_K_IN_REPLY_TO = Keyword("in-reply-to")
+
+
+def to_sexp(msg: AclMessage, *, sender: AgentId | None = None) -> list:
+    """The message as an S-expression; ``sender`` is written if the message has none."""
+    # Messages are written on every send: keywords are built once, not per message.
     out: list = [str.__new__(Symbol, msg.performative.value)]
-    if msg.sender is not None:
-        out += [Keyword("sender"), msg.sender.to_sexp()]
+    sender = msg.sender or sender
+    if sender is not None:
+        out += [_K_SENDER, sender.to_sexp()]
     if msg.receivers:
-        out += [Keyword("receiver"), [_SET, *(r.to_sexp() for r in msg.receivers)]]
+        out += [_K_RECEIVER, [_SET, *(r.to_sexp() for r in msg.receivers)]]
     if msg.reply_to:
-        out += [Keyword("reply-to"), [_SET, *(r.to_sexp() for r in msg.reply_to)]]
+        out += [_K_REPLY_TO, [_SET, *(r.to_sexp() for r in msg.reply_to)]]
     if msg.content is not None:
-        out += [Keyword("content"), msg.content]
-    for name, value in (
-        ("language", msg.language),
-        ("encoding", msg.encoding),
-        ("ontology", msg.ontology),
-        ("protocol", msg.protocol),
-        ("conversation-id", msg.conversation_id),
-        ("reply-with", msg.reply_with),
-        ("in-reply-to", msg.in_reply_to),
+        out += [_K_CONTENT, msg.content]
+    for keyword, value in (
+        (_K_LANGUAGE, msg.language),
+        (_K_ENCODING, msg.encoding),
+        (_K_ONTOLOGY, msg.ontology),
+        (_K_PROTOCOL, msg.protocol),
+        (_K_CONVERSATION_ID, msg.conversation_id),
+        (_K_REPLY_WITH, msg.reply_with),
+        (_K_IN_REPLY_TO, msg.in_reply_to),
     ):
         if value is not None:
-            out += [Keyword(name), _word(value)]
+            out += [keyword, _word(value)]
     if msg.reply_by is not None:
-        out += [Keyword("reply-by"), str.__new__(Symbol, format_datetime(msg.reply_by))]
+        out += [_K_REPLY_BY, str.__new__(Symbol, format_datetime(msg.reply_by))]
     for name, value in msg.user:
         out += [Keyword(name), value]
     return out
 
 
-def to_text(msg: AclMessage) -> str:
-    """The message in FIPA's string form, on one line."""
-    return dumps(to_sexp(msg))
+def to_text(msg: AclMessage, *, sender: AgentId | None = None) -> str:
+    """The message in FIPA's string form, on one line (``sender`` as in :func:`to_sexp`)."""
+    return dumps(to_sexp(msg, sender=sender))
 
 
 # ---- reading ------------------------------------------------------------------
@@ -217,6 +242,10 @@ def _text_of(value, param: str) -> str:
 
 
 def _agent(value, param: str) -> AgentId:
+    if type(value) is list and len(value) == 3 and value[0] == "agent-identifier" and value[1] == _K_NAME_TEXT:
+        name = value[2]  # the common form, (agent-identifier :name x), read without the general loop
+        if type(value[1]) is Keyword and (type(name) is Symbol or (type(name) is str and name)):
+            return AgentId(str.__str__(name))
     if type(value) is Symbol or type(value) is str:
         return AgentId(str(value))  # a bare name, accepted for convenience
     if type(value) is not list or not value or str(value[0]).lower() != "agent-identifier":
@@ -275,7 +304,7 @@ def from_sexp(sexp) -> AclMessage:
         label, value = items[i], items[i + 1]
         if type(label) is not Keyword:
             raise AclError(f"expected a :parameter, found {dumps_safe(label)}")
-        name = label.name.lower()
+        name = label[1:].lower()
         if name in seen:
             raise AclError(f":{name} given twice")
         seen.add(name)

@@ -115,3 +115,12 @@ messages = st.builds(
 @given(messages)
 def test_generated_messages_round_trip(msg):
     assert parse(to_text(msg)) == msg
+
+
+def test_to_text_writes_a_default_sender_only_when_the_message_has_none():
+    me, other = AgentId("me"), AgentId("other")
+    anonymous = AclMessage(Performative.INFORM, receivers=(other,), content="(x)")
+    assert parse(to_text(anonymous, sender=me)).sender == me
+    assert parse(to_text(anonymous)).sender is None
+    signed = anonymous.with_(sender=other)
+    assert parse(to_text(signed, sender=me)).sender == other
