@@ -141,7 +141,11 @@ class Session:
         if not line.strip():
             return True
         try:
-            sexp = loads(line, limits=self.gateway.limits)
+            text = line.decode()
+        except UnicodeDecodeError:
+            text = None  # the reader says where and why
+        try:
+            sexp = loads(line if text is None else text, limits=self.gateway.limits)
         except LanguageError as exc:
             self.send(form("not-understood", reason=str(exc)))
             return True
@@ -153,7 +157,7 @@ class Session:
             self.send(form("failure", in_reply_to=head, reason="say (hello :name ...) first"))
             return True
         if head in _PERFORMATIVES:
-            self._send_acl(sexp)
+            self._send_acl(sexp, text)
             return True
         handler = self._COMMANDS.get(head)
         if handler is None:
@@ -274,7 +278,7 @@ class Session:
         "bye": _bye,
     }
 
-    def _send_acl(self, sexp: list) -> None:
+    def _send_acl(self, sexp: list, text: str) -> None:
         try:
             msg = acl.from_sexp(sexp)
         except LanguageError as exc:
@@ -291,10 +295,16 @@ class Session:
         if unknown:
             self.send(form("failure", in_reply_to=perf, reason=f"unknown receiver {', '.join(unknown)}"))
             return
-        if msg.sender is None:
-            # Say who sent it; the rest of the line goes on as the agent wrote it.
-            sexp = [sexp[0], _K_SENDER, AgentId(self.name).to_sexp(), *sexp[1:]]
-        text = dumps(sexp)
+        # The line goes on as the agent wrote it (it was read and checked above), with
+        # the performative in lower case and a missing sender put in right after it.
+        written = sexp[0]
+        body = text.strip()[1:].lstrip()
+        if body.startswith(written):
+            sender = "" if msg.sender else f" :sender (agent-identifier :name {self.name})"
+            text = f"({perf}{sender}{body[len(written) :]}"
+        else:
+            sender = [] if msg.sender else [_K_SENDER, AgentId(self.name).to_sexp()]
+            text = dumps([Symbol(perf), *sender, *sexp[1:]])
         for receiver in msg.receivers:
             self.gateway.relay(receiver.name, text)
 

@@ -103,7 +103,7 @@ class GatewayClient:
             return self.inbox.popleft()
         while True:
             sexp = self.read()
-            head = str(sexp[0])
+            head = str(sexp[0]).lower()
             params = _pairs(sexp[1:])
             if head in _PERFORMATIVES and "sender" in params:
                 return acl.from_sexp(sexp)

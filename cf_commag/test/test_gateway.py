@@ -295,6 +295,9 @@ def test_a_burst_goes_out_as_one_sample_per_receiver(server):
         sock.sendall(b"(hello :name bob)\n" + burst + b"(ping)\n")
         got = until_pong(sock)
         assert got[0].startswith("(welcome") and got[-1] == "(pong)"
+        deadline = time.monotonic() + 5  # published at the end of the loop turn, maybe after the pong
+        while sum(t.count("\n") + 1 for _, t in server.bus.published) < 12 and time.monotonic() < deadline:
+            time.sleep(0.01)
         samples = {to: [t for r, t in server.bus.published if r == to] for to in ("alice", "carol")}
         for to, texts in samples.items():
             lines_ = [line for t in texts for line in t.split("\n")]
@@ -319,3 +322,21 @@ def test_inbox_samples_delivered_from_another_thread_arrive_whole_and_in_order(s
         t.join()
         assert got == [str(i) for i in range(3000)]
         alice.ping()  # and the gateway's own answers still come through
+
+
+@pytest.mark.parametrize(
+    "line",
+    [
+        b'(INFORM :receiver alice :content "x" :conversation-id c1)',
+        b'  (  inform   :receiver (set (agent-identifier :name alice)) :content "x" :conversation-id c1 )  \r',
+        b'(inform :sender (agent-identifier :name bob) :receiver alice :content "x" :conversation-id c1)',
+    ],
+)
+def test_relayed_lines_carry_their_sender(server, line):
+    with server.client("alice") as alice:
+        sock = server.raw()
+        sock.sendall(b"(hello :name bob)\n" + line + b"\n(ping)\n")
+        until_pong(sock)
+        got = alice.receive()
+        assert got.sender == AgentId("bob") and got.content == "x" and got.conversation_id == "c1"
+        sock.close()
