@@ -17,7 +17,6 @@ import socket
 import statistics
 import sys
 import tempfile
-import threading
 import time
 import uuid
 from pathlib import Path
@@ -42,18 +41,9 @@ def pct(values: list[float], q: float) -> float:
 
 
 class RawTcp:
-    """An asyncio line echo server and one blocking client: the floor for anything over a socket."""
+    """A line echo in another process (asyncio protocol) and one blocking client: the socket floor."""
 
-    def __init__(self):
-        self.loop = asyncio.new_event_loop()
-
-        async def handle(reader, writer):
-            while line := await reader.readline():
-                writer.write(line)
-
-        server = self.loop.run_until_complete(asyncio.start_server(handle, "127.0.0.1", 0))
-        port = server.sockets[0].getsockname()[1]
-        threading.Thread(target=self.loop.run_forever, daemon=True).start()
+    def __init__(self, port: int):
         self.sock = socket.create_connection(("127.0.0.1", port))
         self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         self.file = self.sock.makefile("rwb")
@@ -70,7 +60,6 @@ class RawTcp:
 
     def close(self) -> None:
         self.sock.close()
-        self.loop.call_soon_threadsafe(self.loop.stop)
 
 
 class RawRclpy:
@@ -227,8 +216,12 @@ def main() -> None:
         helper = str(HERE / "helpers/echo_agents.py")
         procs.start([sys.executable, helper, "agent", echo, f"/commag_{tag}", kind], "echo")
         procs.start([sys.executable, helper, "ros-echo", kind], "ros-echo")
+        tcp_port_file = tmp / "tcp-echo-port"
+        procs.start([sys.executable, helper, "tcp-echo", str(tcp_port_file)], "tcp-echo")
         deadline = time.monotonic() + 30
-        while not (port_file.exists() and "ready" in procs.log("echo")) and time.monotonic() < deadline:
+        while not (port_file.exists() and "ready" in procs.log("echo") and "ready" in procs.log("tcp-echo")):
+            if time.monotonic() > deadline:
+                raise RuntimeError("the gateway, the echo agent or the TCP echo did not start")
             time.sleep(0.1)
         port = int(port_file.read_text())
         time.sleep(2.0)  # the echo agent registers; the gateway's registry cache learns it
@@ -236,7 +229,7 @@ def main() -> None:
         # The three round trips in turns, block by block, so that the machine's
         # drift (2 shared cores) falls on all of them alike.
         variants = {
-            "raw TCP echo (asyncio)": RawTcp(),
+            "raw TCP echo, 2 processes (asyncio)": RawTcp(int(tcp_port_file.read_text())),
             "raw rclpy ping-pong, 2 processes": RawRclpy(kind),
             "TCP agent -> gateway -> ROS agent -> back": ThroughGateway(port, f"rt_{tag}", echo),
         }

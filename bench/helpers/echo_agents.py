@@ -2,12 +2,15 @@
 
 echo_agents.py ros-echo       # raw rclpy: /bench/ping -> /bench/pong
 echo_agents.py agent NAME     # a framework agent that sends every message's content back to its sender
+echo_agents.py tcp-echo FILE  # raw asyncio line echo on a free loopback port, written to FILE
 """
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import sys
+from pathlib import Path
 
 import rclpy
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
@@ -45,7 +48,24 @@ def agent(name: str) -> None:
     run(node, sys.argv[4])
 
 
+async def tcp_echo(port_file: str) -> None:
+    class Echo(asyncio.Protocol):
+        def connection_made(self, transport):
+            self.transport = transport
+
+        def data_received(self, data):
+            self.transport.write(data)
+
+    server = await asyncio.get_running_loop().create_server(Echo, "127.0.0.1", 0)
+    Path(port_file).write_text(f"{server.sockets[0].getsockname()[1]}\n")
+    print("ready", flush=True)
+    await server.serve_forever()
+
+
 if __name__ == "__main__":
-    rclpy.init()
     with contextlib.suppress(KeyboardInterrupt):
-        ros_echo(sys.argv[2]) if sys.argv[1] == "ros-echo" else agent(sys.argv[2])
+        if sys.argv[1] == "tcp-echo":
+            asyncio.run(tcp_echo(sys.argv[2]))
+        else:
+            rclpy.init()
+            ros_echo(sys.argv[2]) if sys.argv[1] == "ros-echo" else agent(sys.argv[2])
