@@ -558,7 +558,7 @@ class _Connection(asyncio.Protocol):
         with self.lock:
             if self.closing:
                 return False
-            if not self.deferred and self.transport.get_write_buffer_size() == 0:
+            if not self.deferred and self._nothing_buffered():
                 try:
                     sent = self.direct.send(data)
                 except (BlockingIOError, InterruptedError):
@@ -574,6 +574,12 @@ class _Connection(asyncio.Protocol):
         if first:
             self.loop.call_soon_threadsafe(self._write_deferred)
         return True
+
+    def _nothing_buffered(self) -> bool:
+        try:
+            return self.transport.get_write_buffer_size() == 0
+        except RuntimeError:  # Python 3.12 sums a deque the loop thread may be changing
+            return False
 
     def _write_deferred(self) -> None:
         with self.lock:
