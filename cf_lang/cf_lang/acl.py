@@ -122,7 +122,6 @@ _SEQUENCE = Symbol("sequence")
 _K_NAME = Keyword("name")
 _K_ADDRESSES = Keyword("addresses")
 _K_RESOLVERS = Keyword("resolvers")
-_K_NAME_TEXT = ":name"
 _WORD_RE = re.compile(r"""[^\s()"#0-9:;-][^\s()";]*""")
 
 
@@ -242,7 +241,7 @@ def _text_of(value, param: str) -> str:
 
 
 def _agent(value, param: str) -> AgentId:
-    if type(value) is list and len(value) == 3 and value[0] == "agent-identifier" and value[1] == _K_NAME_TEXT:
+    if type(value) is list and len(value) == 3 and value[0] == "agent-identifier" and value[1] == _K_NAME:
         name = value[2]  # the common form, (agent-identifier :name x), read without the general loop
         if type(value[1]) is Keyword and (type(name) is Symbol or (type(name) is str and name)):
             return AgentId(str.__str__(name))
