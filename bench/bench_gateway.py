@@ -35,6 +35,14 @@ QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=His
 PAYLOAD = "x" * 60
 
 
+def has_uvloop() -> bool:
+    try:
+        import uvloop  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
 def pct(values: list[float], q: float) -> float:
     values = sorted(values)
     return values[min(len(values) - 1, int(q * len(values)))]
@@ -209,9 +217,12 @@ def main() -> None:
     rclpy.init()
     try:
         start_commag(procs, tag, tmp)
-        port_file = tmp / "port"
         kind = args.executor
-        start_gateway(procs, tag, port_file, f"executor:={kind}")
+        # The same gateway twice, one per event loop on its TCP side, to compare them in one run.
+        loops = ["asyncio", "uvloop"] if has_uvloop() else ["asyncio"]
+        port_files = {loop: tmp / f"port-{loop}" for loop in loops}
+        for loop, port_file in port_files.items():
+            start_gateway(procs, tag, port_file, f"executor:={kind}", f"event_loop:={loop}", name=f"gateway_{loop}")
         echo = f"echo_{tag}"
         helper = str(HERE / "helpers/echo_agents.py")
         procs.start([sys.executable, helper, "agent", echo, f"/commag_{tag}", kind], "echo")
@@ -219,11 +230,15 @@ def main() -> None:
         tcp_port_file = tmp / "tcp-echo-port"
         procs.start([sys.executable, helper, "tcp-echo", str(tcp_port_file)], "tcp-echo")
         deadline = time.monotonic() + 30
-        while not (port_file.exists() and "ready" in procs.log("echo") and "ready" in procs.log("tcp-echo")):
+        while not (
+            all(p.exists() for p in port_files.values())
+            and "ready" in procs.log("echo")
+            and "ready" in procs.log("tcp-echo")
+        ):
             if time.monotonic() > deadline:
                 raise RuntimeError("the gateway, the echo agent or the TCP echo did not start")
             time.sleep(0.1)
-        port = int(port_file.read_text())
+        ports = {loop: int(p.read_text()) for loop, p in port_files.items()}
         time.sleep(2.0)  # the echo agent registers; the gateway's registry cache learns it
 
         # The three round trips in turns, block by block, so that the machine's
@@ -231,32 +246,44 @@ def main() -> None:
         variants = {
             "raw TCP echo, 2 processes (asyncio)": RawTcp(int(tcp_port_file.read_text())),
             "raw rclpy ping-pong, 2 processes": RawRclpy(kind),
-            "TCP agent -> gateway -> ROS agent -> back": ThroughGateway(port, f"rt_{tag}", echo),
+            **{
+                f"TCP agent -> gateway ({loop}) -> ROS agent -> back": ThroughGateway(ports[loop], f"rt_{loop}_{tag}", echo)
+                for loop in loops
+            },
         }
         samples: dict[str, list[float]] = {label: [] for label in variants}
-        blocks = 10
+        block_medians: dict[str, list[float]] = {label: [] for label in variants}
+        blocks = 30
         for _ in range(blocks):
             for label, variant in variants.items():
-                samples[label] += variant.rounds(args.rounds // blocks)
+                block = variant.rounds(args.rounds // blocks)
+                samples[label] += block
+                block_medians[label].append(statistics.median(block))
         for variant in variants.values():
             variant.close()
+        # The ratio is taken block by block (each variant's median against raw rclpy's
+        # in the same block, seconds apart), then the median of those: the shared
+        # machine's drift over the run falls out of it.
+        raw = block_medians["raw rclpy ping-pong, 2 processes"]
         print(f"executor in every ROS process: {kind}\n")
-        print("| round trip, 60 B payload | p50 µs | p99 µs | p50 vs raw rclpy |")
+        print("| round trip, 60 B payload | p50 µs | p99 µs | p50 vs raw rclpy (median of 30 blocks) |")
         print("|---|---:|---:|---:|")
-        base = statistics.median(samples["raw rclpy ping-pong, 2 processes"])
         for label, v in samples.items():
-            print(f"| {label} | {pct(v, 0.5):.0f} | {pct(v, 0.99):.0f} | {statistics.median(v) / base:.2f}x |")
+            ratio = statistics.median(m / r for m, r in zip(block_medians[label], raw, strict=True))
+            print(f"| {label} | {pct(v, 0.5):.0f} | {pct(v, 0.99):.0f} | {ratio:.2f}x |")
 
         print("\n| sustained, through the gateway | messages | in flight | msg/s | lost |")
         print("|---|---:|---:|---:|---:|")
         for in_flight in (32, 256):
-            rate, lost = gateway_throughput(port, f"tp{in_flight}_{tag}", echo, 20_000, in_flight)
-            print(f"| TCP -> ROS agent -> TCP | 20000 | {in_flight} | {rate:,.0f} | {lost} |")
+            for loop in loops:
+                rate, lost = gateway_throughput(ports[loop], f"tp{in_flight}_{loop}_{tag}", echo, 20_000, in_flight)
+                print(f"| TCP -> ROS agent -> TCP ({loop}) | 20000 | {in_flight} | {rate:,.0f} | {lost} |")
 
-        rate, lat = many_clients(port, tag, echo, 200, 50)
-        print("\n| concurrent clients | round trips each | total msg/s | p50 µs | p99 µs |")
-        print("|---:|---:|---:|---:|---:|")
-        print(f"| 200 | 50 | {rate:,.0f} | {pct(lat, 0.5):.0f} | {pct(lat, 0.99):.0f} |")
+        print("\n| concurrent clients | event loop | round trips each | total msg/s | p50 µs | p99 µs |")
+        print("|---:|---|---:|---:|---:|---:|")
+        for loop in loops:
+            rate, lat = many_clients(ports[loop], f"{loop}_{tag}", echo, 200, 50)
+            print(f"| 200 | {loop} | 50 | {rate:,.0f} | {pct(lat, 0.5):.0f} | {pct(lat, 0.99):.0f} |")
     finally:
         rclpy.try_shutdown()
         procs.kill_all()

@@ -140,13 +140,15 @@ def start_commag(procs: Processes, tag: str, tmp_path: Path, *params: str, log_n
     return procs.start(argv, log_name)
 
 
-def start_gateway(procs: Processes, tag: str, port_file: Path, *params: str) -> subprocess.Popen:
+def start_gateway(
+    procs: Processes, tag: str, port_file: Path, *params: str, name: str = "gateway"
+) -> subprocess.Popen:
     """Start the installed gateway for the ComMAg commag_<tag> on a free port, written to port_file."""
     argv = [
         executable("cf_commag", "gateway"),
         "--ros-args",
         "-r",
-        f"__node:=gateway_{tag}",
+        f"__node:={name}_{tag}",
         "-p",
         "port:=0",
         "-p",
@@ -155,7 +157,7 @@ def start_gateway(procs: Processes, tag: str, port_file: Path, *params: str) -> 
         f"commag:=/commag_{tag}",
         *[x for p in params for x in ("-p", p)],
     ]
-    return procs.start(argv, "gateway")
+    return procs.start(argv, name)
 
 
 def start_component(procs: Processes, tag: str, name: str, *args: str) -> subprocess.Popen:

@@ -18,7 +18,7 @@ from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from typing import Protocol
 
-from cf_lang import LanguageError, acl, dumps
+from cf_lang import LanguageError, acl, acl_fast, dumps
 from cf_lang.acl import AgentId
 from cf_lang.sexp import Keyword, Limits, Symbol, loads
 from cf_lang.taxonomy import Direction
@@ -144,6 +144,11 @@ class Session:
             text = line.decode()
         except UnicodeDecodeError:
             text = None  # the reader says where and why
+        if text is not None and self.name is not None:
+            found = acl_fast.split(text, self.gateway.limits)
+            if found is not None and found[0].lower() in _PERFORMATIVES:  # the common shape, one regex run
+                self._send_fast(*found, text)
+                return True
         try:
             sexp = loads(line if text is None else text, limits=self.gateway.limits)
         except LanguageError as exc:
@@ -278,35 +283,50 @@ class Session:
         "bye": _bye,
     }
 
+    def _send_fast(self, written: str, end: int, pairs: list[tuple[str, str]], text: str) -> None:
+        sender = receivers = None
+        for key, value in pairs:
+            if key == "receiver":
+                receivers = acl_fast.names(value)
+            elif key == "sender":
+                sender = acl_fast.names(value)[0]
+        self._relay_acl(written.lower(), sender, receivers or [], text[end:], None)
+
     def _send_acl(self, sexp: list, text: str) -> None:
         try:
             msg = acl.from_sexp(sexp)
         except LanguageError as exc:
             self.send(form("not-understood", reason=str(exc)))
             return
-        perf = msg.performative.value
-        if msg.sender is not None and msg.sender.name != self.name:
-            self.send(form("failure", in_reply_to=perf, reason=f"you are {self.name}, not {msg.sender.name}"))
+        written = sexp[0]
+        body = text.strip()[1:].lstrip()
+        rest = body[len(written) :] if body.startswith(written) else None
+        sender = msg.sender.name if msg.sender is not None else None
+        self._relay_acl(msg.performative.value, sender, [r.name for r in msg.receivers], rest, sexp)
+
+    def _relay_acl(self, perf: str, sender: str | None, receivers: list[str], rest: str | None, sexp) -> None:
+        """Check the sender and receivers, then relay the line: as written after the
+        performative (``rest``) when there is that, else written again from ``sexp``."""
+        if sender is not None and sender != self.name:
+            self.send(form("failure", in_reply_to=perf, reason=f"you are {self.name}, not {sender}"))
             return
-        if not msg.receivers:
+        if not receivers:
             self.send(form("failure", in_reply_to=perf, reason="no :receiver"))
             return
-        unknown = [r.name for r in msg.receivers if not self.gateway.bus.known(r.name)]
+        known = self.gateway.bus.known
+        unknown = [r for r in receivers if not known(r)]
         if unknown:
             self.send(form("failure", in_reply_to=perf, reason=f"unknown receiver {', '.join(unknown)}"))
             return
-        # The line goes on as the agent wrote it (it was read and checked above), with
-        # the performative in lower case and a missing sender put in right after it.
-        written = sexp[0]
-        body = text.strip()[1:].lstrip()
-        if body.startswith(written):
-            sender = "" if msg.sender else f" :sender (agent-identifier :name {self.name})"
-            text = f"({perf}{sender}{body[len(written) :]}"
+        # The performative in lower case and a missing sender put in right after it.
+        if rest is not None:
+            text = f"({perf}{rest}" if sender else f"({perf} :sender (agent-identifier :name {self.name}){rest}"
         else:
-            sender = [] if msg.sender else [_K_SENDER, AgentId(self.name).to_sexp()]
-            text = dumps([Symbol(perf), *sender, *sexp[1:]])
-        for receiver in msg.receivers:
-            self.gateway.relay(receiver.name, text)
+            own = [] if sender else [_K_SENDER, AgentId(self.name).to_sexp()]
+            text = dumps([Symbol(perf), *own, *sexp[1:]])
+        relay = self.gateway.relay
+        for receiver in receivers:
+            relay(receiver, text)
 
     # ---- end ----------------------------------------------------------------
 

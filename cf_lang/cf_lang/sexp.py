@@ -128,6 +128,11 @@ def _unescape_one(match: re.Match) -> str:
         raise _Bad from None
 
 
+def unescape(body: str) -> str:
+    """The body of a string token, whose escapes were already checked, with the escapes read."""
+    return _ESCAPE_RE.sub(_unescape_one, body) if "\\" in body else body
+
+
 def _classify(tok):
     """Turn one token that is not in the atom cache into its value."""
     if type(tok) is tuple:  # a string body cut out by the fast splitter

@@ -101,13 +101,20 @@ messages = st.builds(
     AclMessage,
     performative=st.sampled_from(Performative),
     sender=st.builds(AgentId, names, st.tuples() | st.tuples(texts)),
-    receivers=st.lists(st.builds(AgentId, names), min_size=1, max_size=3).map(tuple),
+    receivers=st.lists(st.builds(AgentId, names, st.just(())), min_size=1, max_size=3).map(tuple),
     content=st.none() | st.text(max_size=60),
     protocol=st.none() | st.sampled_from(["fipa-request", "fipa-query", "fipa-subscribe"]),
     conversation_id=st.none() | texts,
     reply_with=st.none() | texts,
     in_reply_to=st.none() | texts,
     reply_by=st.none() | st.integers(0, 4_000_000_000_000).map(lambda ms: ms / 1000),
+    reply_to=st.lists(st.builds(AgentId, names, st.just(())), max_size=2).map(tuple),
+    language=st.none() | st.just("cf-lang"),
+    encoding=st.none() | texts,
+    ontology=st.none() | st.just("robocup-soccer"),
+    user=st.lists(
+        st.tuples(st.from_regex(r"X-[a-z]{1,8}", fullmatch=True), texts), max_size=2, unique_by=lambda p: p[0].lower()
+    ).map(tuple),
 )
 
 
