@@ -2,7 +2,9 @@
 
 - raw TCP echo (asyncio server, 1 client): the floor for anything over a socket;
 - raw rclpy ping-pong between two processes (std_msgs/String, reliable);
-- TCP agent -> gateway -> ROS agent (another process) -> gateway -> TCP agent;
+- TCP agent -> gateway -> ROS agent (another process) -> gateway -> TCP agent, with two ROS agents:
+  a bare rclpy node answering with string work only (like the raw echo: the gateway's own cost)
+  and a framework Agent (cf_commag.client: reads, dispatches and writes every message);
 - sustained throughput through the gateway with many messages in flight, every one counted;
 - 200 concurrent TCP clients doing round trips.
 
@@ -33,14 +35,6 @@ from cf_system import Processes, start_commag, start_gateway  # noqa: E402
 
 QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, history=HistoryPolicy.KEEP_LAST)
 PAYLOAD = "x" * 60
-
-
-def has_uvloop() -> bool:
-    try:
-        import uvloop  # noqa: F401
-    except ImportError:
-        return False
-    return True
 
 
 def pct(values: list[float], q: float) -> float:
@@ -218,27 +212,22 @@ def main() -> None:
     try:
         start_commag(procs, tag, tmp)
         kind = args.executor
-        # The same gateway twice, one per event loop on its TCP side, to compare them in one run.
-        loops = ["asyncio", "uvloop"] if has_uvloop() else ["asyncio"]
-        port_files = {loop: tmp / f"port-{loop}" for loop in loops}
-        for loop, port_file in port_files.items():
-            start_gateway(procs, tag, port_file, f"executor:={kind}", f"event_loop:={loop}", name=f"gateway_{loop}")
+        port_file = tmp / "port"
+        start_gateway(procs, tag, port_file, f"executor:={kind}")
         echo = f"echo_{tag}"
         helper = str(HERE / "helpers/echo_agents.py")
         procs.start([sys.executable, helper, "agent", echo, f"/commag_{tag}", kind], "echo")
+        bare = f"bare_{tag}"
+        procs.start([sys.executable, helper, "acl-echo", bare, f"/commag_{tag}", kind], "acl-echo")
         procs.start([sys.executable, helper, "ros-echo", kind], "ros-echo")
         tcp_port_file = tmp / "tcp-echo-port"
         procs.start([sys.executable, helper, "tcp-echo", str(tcp_port_file)], "tcp-echo")
         deadline = time.monotonic() + 30
-        while not (
-            all(p.exists() for p in port_files.values())
-            and "ready" in procs.log("echo")
-            and "ready" in procs.log("tcp-echo")
-        ):
+        while not (port_file.exists() and all("ready" in procs.log(n) for n in ("echo", "acl-echo", "tcp-echo"))):
             if time.monotonic() > deadline:
                 raise RuntimeError("the gateway, the echo agent or the TCP echo did not start")
             time.sleep(0.1)
-        ports = {loop: int(p.read_text()) for loop, p in port_files.items()}
+        port = int(port_file.read_text())
         time.sleep(2.0)  # the echo agent registers; the gateway's registry cache learns it
 
         # The three round trips in turns, block by block, so that the machine's
@@ -246,10 +235,8 @@ def main() -> None:
         variants = {
             "raw TCP echo, 2 processes (asyncio)": RawTcp(int(tcp_port_file.read_text())),
             "raw rclpy ping-pong, 2 processes": RawRclpy(kind),
-            **{
-                f"TCP agent -> gateway ({loop}) -> ROS agent -> back": ThroughGateway(ports[loop], f"rt_{loop}_{tag}", echo)
-                for loop in loops
-            },
+            "TCP agent -> gateway -> bare rclpy ACL echo -> back": ThroughGateway(port, f"rtb_{tag}", bare),
+            "TCP agent -> gateway -> framework Agent -> back": ThroughGateway(port, f"rt_{tag}", echo),
         }
         samples: dict[str, list[float]] = {label: [] for label in variants}
         block_medians: dict[str, list[float]] = {label: [] for label in variants}
@@ -275,15 +262,13 @@ def main() -> None:
         print("\n| sustained, through the gateway | messages | in flight | msg/s | lost |")
         print("|---|---:|---:|---:|---:|")
         for in_flight in (32, 256):
-            for loop in loops:
-                rate, lost = gateway_throughput(ports[loop], f"tp{in_flight}_{loop}_{tag}", echo, 20_000, in_flight)
-                print(f"| TCP -> ROS agent -> TCP ({loop}) | 20000 | {in_flight} | {rate:,.0f} | {lost} |")
+            rate, lost = gateway_throughput(port, f"tp{in_flight}_{tag}", echo, 20_000, in_flight)
+            print(f"| TCP -> ROS agent -> TCP | 20000 | {in_flight} | {rate:,.0f} | {lost} |")
 
-        print("\n| concurrent clients | event loop | round trips each | total msg/s | p50 µs | p99 µs |")
-        print("|---:|---|---:|---:|---:|---:|")
-        for loop in loops:
-            rate, lat = many_clients(ports[loop], f"{loop}_{tag}", echo, 200, 50)
-            print(f"| 200 | {loop} | 50 | {rate:,.0f} | {pct(lat, 0.5):.0f} | {pct(lat, 0.99):.0f} |")
+        rate, lat = many_clients(port, tag, echo, 200, 50)
+        print("\n| concurrent clients | round trips each | total msg/s | p50 µs | p99 µs |")
+        print("|---:|---:|---:|---:|---:|")
+        print(f"| 200 | 50 | {rate:,.0f} | {pct(lat, 0.5):.0f} | {pct(lat, 0.99):.0f} |")
     finally:
         rclpy.try_shutdown()
         procs.kill_all()

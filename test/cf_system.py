@@ -140,15 +140,13 @@ def start_commag(procs: Processes, tag: str, tmp_path: Path, *params: str, log_n
     return procs.start(argv, log_name)
 
 
-def start_gateway(
-    procs: Processes, tag: str, port_file: Path, *params: str, name: str = "gateway"
-) -> subprocess.Popen:
+def start_gateway(procs: Processes, tag: str, port_file: Path, *params: str) -> subprocess.Popen:
     """Start the installed gateway for the ComMAg commag_<tag> on a free port, written to port_file."""
     argv = [
         executable("cf_commag", "gateway"),
         "--ros-args",
         "-r",
-        f"__node:={name}_{tag}",
+        f"__node:=gateway_{tag}",
         "-p",
         "port:=0",
         "-p",
@@ -157,7 +155,7 @@ def start_gateway(
         f"commag:=/commag_{tag}",
         *[x for p in params for x in ("-p", p)],
     ]
-    return procs.start(argv, name)
+    return procs.start(argv, "gateway")
 
 
 def start_component(procs: Processes, tag: str, name: str, *args: str) -> subprocess.Popen:

@@ -40,23 +40,7 @@ _PARAMS = {
     "commag": ("/commag", "the ComMAg's node name"),
     "port_file": ("", "if set, the bound port is written to this file"),
     "executor": ("events", "rclpy executor: events (rclpy.experimental.EventsExecutor) or single"),
-    "event_loop": ("auto", "TCP side event loop: uvloop, asyncio, or auto (uvloop when it is installed)"),
 }
-
-
-def new_event_loop(kind: str) -> asyncio.AbstractEventLoop:
-    """The TCP side's event loop. uvloop runs the loop in C: fewer microseconds per read."""
-    if kind not in ("auto", "uvloop", "asyncio"):
-        raise ValueError(f"event_loop must be auto, uvloop or asyncio, not {kind!r}")
-    if kind != "asyncio":
-        try:
-            import uvloop
-        except ImportError:
-            if kind == "uvloop":
-                raise
-        else:
-            return uvloop.new_event_loop()
-    return asyncio.new_event_loop()
 
 
 class GatewayNode(Node):
@@ -92,13 +76,12 @@ class GatewayNode(Node):
         self._todo_lock = threading.Lock()
         self.create_timer(0.02, self._run_todo)
         self.create_timer(0.1, self._renew_due)
-        self.loop = new_event_loop(p["event_loop"])
+        self.loop = asyncio.new_event_loop()
         self.gateway = Gateway(self.config, self, log=self.get_logger().error)
         self._thread = threading.Thread(target=self.loop.run_forever, name="gateway-asyncio", daemon=True)
         self._thread.start()
         port = asyncio.run_coroutine_threadsafe(self.gateway.start(), self.loop).result(timeout=10)
-        loop_kind = type(self.loop).__module__.split(".")[0]
-        self.get_logger().info(f"gateway listening on {self.config.host}:{port} ({loop_kind} event loop)")
+        self.get_logger().info(f"gateway listening on {self.config.host}:{port}")
         if p["port_file"]:
             Path(p["port_file"]).write_text(f"{port}\n")
 

@@ -25,7 +25,7 @@ from typing import NamedTuple
 from . import acl_fast
 from .errors import AclError, SexpError
 from .ontology import LANGUAGE, ONTOLOGY
-from .sexp import DEFAULT_LIMITS, Keyword, Limits, Symbol, dumps, loads, unescape
+from .sexp import DEFAULT_LIMITS, Keyword, Limits, Symbol, dumps, loads, quote, unescape
 
 
 class Performative(StrEnum):
@@ -219,7 +219,53 @@ def to_sexp(msg: AclMessage, *, sender: AgentId | None = None) -> list:
 
 def to_text(msg: AclMessage, *, sender: AgentId | None = None) -> str:
     """The message in FIPA's string form, on one line (``sender`` as in :func:`to_sexp`)."""
+    if type(msg.content) is str or msg.content is None:
+        # Written straight into one string, without building the lists first: the
+        # same text as dumps(to_sexp(...)) (tests check), a third of the time.
+        return _write(msg, msg.sender or sender)
     return dumps(to_sexp(msg, sender=sender))
+
+
+_OPENINGS = {p: f"({p.value}" for p in Performative}
+_AGENT_TEXTS: dict[AgentId, str] = {}
+# In to_sexp's order: (label, index of the field in AclMessage).
+_TEXT_PARAMS = tuple(
+    (f" :{name.replace('_', '-')} ", AclMessage._fields.index(name))
+    for name in ("language", "encoding", "ontology", "protocol", "conversation_id", "reply_with", "in_reply_to")
+)
+
+
+def _agent_text(agent: AgentId) -> str:
+    text = _AGENT_TEXTS.get(agent)
+    if text is None:
+        text = dumps(agent.to_sexp())
+        if len(_AGENT_TEXTS) < 4096:  # the team's agents, written again and again
+            _AGENT_TEXTS[agent] = text
+    return text
+
+
+def _write(msg: AclMessage, sender: AgentId | None) -> str:
+    parts = [_OPENINGS[msg.performative]]
+    append = parts.append
+    if sender is not None:
+        append(" :sender " + _agent_text(sender))
+    if msg.receivers:
+        append(" :receiver (set " + " ".join([_agent_text(r) for r in msg.receivers]) + ")")
+    if msg.reply_to:
+        append(" :reply-to (set " + " ".join([_agent_text(r) for r in msg.reply_to]) + ")")
+    if msg.content is not None:
+        append(" :content " + quote(msg.content))
+    for label, index in _TEXT_PARAMS:
+        value = msg[index]
+        if value is not None:
+            word = _word(value)
+            append(label + (word if type(word) is Symbol else quote(word)))
+    if msg.reply_by is not None:
+        append(" :reply-by " + format_datetime(msg.reply_by))
+    for name, value in msg.user:
+        append(f" {Keyword(name)} {dumps(value)}")
+    append(")")
+    return "".join(parts)
 
 
 # ---- reading ------------------------------------------------------------------

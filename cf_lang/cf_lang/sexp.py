@@ -333,7 +333,8 @@ def _why(tok: str) -> tuple[type[SexpError], str, str]:
     return SexpSyntaxError, "number out of range", "a finite number"
 
 
-def _dump_str(value: str) -> str:
+def quote(value: str) -> str:
+    """A string written as an S-expression string token, escapes and all."""
     if _NEEDS_ESCAPE.search(value) is None:
         return f'"{value}"'
     return (
@@ -372,7 +373,7 @@ def _dump(value) -> str:
     if kind is Symbol or kind is Keyword:
         return str.__str__(value)
     if kind is str:
-        return _dump_str(value)
+        return quote(value)
     if kind is int:
         return int.__repr__(value)
     if kind is float:

@@ -15,8 +15,10 @@ from cf_lang.acl import (
     format_datetime,
     parse,
     parse_datetime,
+    to_sexp,
     to_text,
 )
+from cf_lang.sexp import dumps
 
 GOLDEN = (
     "(request :sender (agent-identifier :name blue_3_decision :addresses (sequence tcp://10.0.0.3:7001))"
@@ -122,6 +124,12 @@ messages = st.builds(
 @given(messages)
 def test_generated_messages_round_trip(msg):
     assert parse(to_text(msg)) == msg
+
+
+@settings(max_examples=300)
+@given(messages, st.none() | st.builds(AgentId, names, st.just(())))
+def test_the_direct_writer_writes_what_the_general_one_does(msg, default_sender):
+    assert to_text(msg, sender=default_sender) == dumps(to_sexp(msg, sender=default_sender))
 
 
 def test_to_text_writes_a_default_sender_only_when_the_message_has_none():
