@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 from rclpy._rclpy_pybind11 import RCLError
 from rclpy.duration import Duration
+from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
@@ -125,13 +126,17 @@ class Outbox:
 
     def _send(self, receiver: str, text: str) -> None:
         pub = self._matched.get(receiver)
-        if pub is not None and pub.get_subscription_count() > 0:
+        if pub is not None:
             pub.publish(String(data=text))
             return
         with self._lock:
             pub = self._publishers.get(receiver)
             if pub is None:
-                pub = self._node.create_publisher(String, inbox_topic(receiver), INBOX_QOS)
+                # The matched event tells when the receiver's inbox goes away (the
+                # receiver died): later messages are held then. Asking DDS for the
+                # match count on every message instead costs a lock on its side.
+                events = PublisherEventCallbacks(matched=lambda status: self._on_matched(receiver, status))
+                pub = self._node.create_publisher(String, inbox_topic(receiver), INBOX_QOS, event_callbacks=events)
                 self._publishers[receiver] = pub
             held = self._held.get(receiver)
             if held is None and pub.get_subscription_count() > 0:  # (again) matched: send at once
@@ -141,6 +146,10 @@ class Outbox:
             # Not matched (yet, or any more: the receiver died and may be relaunched): hold it.
             self._matched.pop(receiver, None)
             self._held.setdefault(receiver, []).append((time.monotonic(), text))
+
+    def _on_matched(self, receiver: str, status) -> None:
+        if status.current_count == 0:
+            self._matched.pop(receiver, None)
 
     def flush(self) -> None:
         """Send held messages whose receiver is now matched; drop the ones held too long."""
