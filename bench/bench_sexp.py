@@ -18,7 +18,7 @@ import time
 import sexpdata
 
 from cf_lang import dumps, loads, unparse
-from cf_lang.acl import AclMessage, AgentId, Performative, to_text
+from cf_lang.acl import AclMessage, AgentId, Performative, from_sexp, parse, to_sexp, to_text
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, Team, Velocity, WorldState
 
 
@@ -105,6 +105,50 @@ def main() -> None:
             f"| {label} | {size} | {r['cf_lang.loads']:,.0f} | {r['sexpdata.loads']:,.0f} "
             f"| **{r['cf_lang.loads'] / r['sexpdata.loads']:.1f}x** | {r['cf_lang.dumps']:,.0f} "
             f"| {r['sexpdata.dumps']:,.0f} | **{r['cf_lang.dumps'] / r['sexpdata.dumps']:.1f}x** |"
+        )
+
+    acl_table(args.rounds)
+
+
+def acl_table(rounds: int) -> None:
+    """ACL messages: the fast reader and the direct writer against the general path, same inputs."""
+    common = AclMessage(
+        Performative.REQUEST,
+        sender=AgentId("blue_3_decision"),
+        receivers=(AgentId("blue_3_action"),),
+        content="(exec Player kick :playerNumber 3 :whichTeam our :power 80 :direction 0.1)",
+        protocol="fipa-request",
+        conversation_id="c42",
+        reply_with="r1",
+    )
+    echo = AclMessage(Performative.INFORM, sender=AgentId("rt"), receivers=(AgentId("echo"),), content="123")
+    messages = {
+        "request, common shape": common,
+        "short inform": echo,
+        "request with :reply-by": common.with_(reply_by=1_795_000_000.123),
+    }
+    print(
+        "\n| ACL message | bytes | acl.parse msg/s | loads + from_sexp msg/s | ratio | to_text msg/s | dumps(to_sexp) msg/s | ratio |"
+    )
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for label, msg in messages.items():
+        text = to_text(msg)
+        assert parse(text) == from_sexp(loads(text)) == msg and text == dumps(to_sexp(msg))
+        variants = {
+            "parse": (parse, text),
+            "full": (lambda t: from_sexp(loads(t)), text),
+            "to_text": (to_text, msg),
+            "general": (lambda m: dumps(to_sexp(m)), msg),
+        }
+        n = 20_000
+        times: dict[str, list[float]] = {k: [] for k in variants}
+        for _ in range(rounds):
+            for name, (fn, arg) in variants.items():
+                times[name].append(batch_seconds(fn, arg, n))
+        r = {k: n / statistics.median(v) for k, v in times.items()}
+        print(
+            f"| {label} | {len(text)} | {r['parse']:,.0f} | {r['full']:,.0f} | **{r['parse'] / r['full']:.1f}x** "
+            f"| {r['to_text']:,.0f} | {r['general']:,.0f} | **{r['to_text'] / r['general']:.1f}x** |"
         )
 
 

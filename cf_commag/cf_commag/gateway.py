@@ -290,6 +290,12 @@ class Session:
                 receivers = acl_fast.names(value)
             elif key == "sender":
                 sender = acl_fast.names(value)[0]
+            elif key == "reply-by":
+                try:
+                    acl.parse_datetime(value)
+                except LanguageError as exc:
+                    self.send(form("not-understood", reason=str(exc)))
+                    return
         self._relay_acl(written.lower(), sender, receivers or [], text[end:], None)
 
     def _send_acl(self, sexp: list, text: str) -> None:

@@ -152,6 +152,15 @@ def test_session_register_lookup_and_relay(server):
         (b'(inform :receiver nobody :content "x")', "unknown receiver nobody"),
         (b'(inform :sender mallory :receiver alice :content "x")', "you are carol, not mallory"),
         (b"(inform :receiver)", "not-understood"),
+        # The same checks on lines of the common shape, which take the fast reader:
+        (b'(inform :receiver (set (agent-identifier :name nobody)) :content "x")', "unknown receiver nobody"),
+        (
+            b"(inform :sender (agent-identifier :name mallory) :receiver (set (agent-identifier :name alice)))",
+            "you are carol, not mallory",
+        ),
+        (b'(inform :content "x")', 'failure :in-reply-to "inform" :reason "no :receiver'),
+        (b"(inform :receiver (set (agent-identifier :name alice)) :reply-by 20261341T101010123Z)", "not a valid"),
+        (b"(shout :receiver (set (agent-identifier :name alice)))", "unknown command shout"),
         (b"(hello :name carol)", "already connected as carol"),
     ],
 )

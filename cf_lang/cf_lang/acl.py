@@ -399,6 +399,8 @@ def _from_pairs(performative: Performative, pairs: list[tuple[str, str]]) -> Acl
             fields["content"] = unescape(value[1:-1])
         elif key == "reply-to":
             fields["reply_to"] = tuple(AgentId(name) for name in acl_fast.names(value))
+        elif key == "reply-by":
+            fields["reply_by"] = parse_datetime(value)
         else:
             fields[_STRING_PARAMS[key]] = unescape(value[1:-1]) if value[0] == '"' else value
     return AclMessage(**fields)

@@ -8,7 +8,7 @@ one simple shape, though::
       :content "..." :protocol fipa-request :conversation-id c1)
 
 :func:`split` recognises exactly that shape (sender, receiver, reply-to,
-content and the word-valued parameters; names of the form agent names take;
+content, reply-by and the word-valued parameters; names of the form agent names take;
 lower-case parameter names; one line) with one ``fullmatch``, and gives
 ``None`` for anything else, which the full reader then reads or explains.
 It never accepts a text the full reader rejects: tests check this on
@@ -31,13 +31,15 @@ _SET = rf"\({_OSP}set(?:{_SP}{_AID})++{_OSP}\)"
 _STR = r'"(?:[^"\\]++|\\["\\ntr])*+"'
 _WORD = r"""[^\s()";:0-9+.\-][^\s()";]*+"""
 _TEXT_KEYS = "language|encoding|ontology|protocol|conversation-id|reply-with|in-reply-to"
+# A FIPA date-time; the caller checks the date itself (parse_datetime).
+_TIME = r"[0-9]{8}T[0-9]{9}[A-Za-z]?+"
 _PARAM = (
     rf"{_SP}(?::sender{_SP}{_AID}|:(?:receiver|reply-to){_SP}{_SET}|:content{_SP}{_STR}"
-    rf"|:(?:{_TEXT_KEYS}){_SP}(?:{_WORD}|{_STR}))"
+    rf"|:(?:{_TEXT_KEYS}){_SP}(?:{_WORD}|{_STR})|:reply-by{_SP}{_TIME})"
 )
 # The performative is any word here; the caller checks it is one of the 22.
 _MESSAGE = re.compile(rf"{_OSP}\({_OSP}([A-Za-z][A-Za-z-]*+)((?:{_PARAM})*+){_OSP}\){_OSP}")
-_PAIRS = re.compile(rf"{_SP}:([a-z-]++){_SP}({_SET}|{_AID}|{_STR}|{_WORD})")
+_PAIRS = re.compile(rf"{_SP}:([a-z-]++){_SP}({_SET}|{_AID}|{_STR}|{_WORD}|{_TIME})")
 _NAMES = re.compile(rf":name{_SP}({_NAME})")
 
 _fullmatch = _MESSAGE.fullmatch
@@ -49,8 +51,8 @@ names = _NAMES.findall
 def split(text: str, limits: Limits) -> tuple[str, int, list[tuple[str, str]]] | None:
     """``(performative as written, where it ends, [(parameter, value text), ...])``, or None.
 
-    The performative is not checked: the caller looks it up (and reads the
-    text fully if it is not one).
+    Two things are left to the caller: whether the performative is one of the
+    22 (read the text fully if not), and whether a ``reply-by`` date exists.
 
     None when the text is not of the common shape, a parameter is given
     twice, or the limits are tighter than the shape needs: the full reader

@@ -41,12 +41,19 @@ def test_the_common_shape_takes_the_fast_path_and_reads_the_same():
         '(INFORM :receiver (set (agent-identifier :name a) (agent-identifier :name b)) :content "say \\"hi\\"\\n")',
         '  ( inform-if :content "x" :receiver (set (agent-identifier :name b)) )  ',
         "(inform)",
+        "(inform :reply-by 20261122T101010123Z)",
+        "(inform :reply-by 20261341T101010123Z)",  # the caller reads the date: the same error
         '(agree :in-reply-to "r 1" :reply-to (set (agent-identifier :name c)))',
     ],
 )
 def test_other_common_forms(text):
     assert acl_fast.split(text, DEFAULT_LIMITS) is not None
-    assert parse(text) == full(text)
+    result = full(text)
+    if isinstance(result, AclMessage):
+        assert parse(text) == result
+    else:
+        with pytest.raises(result, match="reply-by"):
+            parse(text)
 
 
 @pytest.mark.parametrize(
@@ -57,7 +64,7 @@ def test_other_common_forms(text):
         '(inform :content "\\q")',  # an escape the reader does not know
         "(inform :sender alice)",  # a bare name
         "(inform :content (Game :time 3))",  # content as an S-expression
-        "(inform :reply-by 20261122T101010123Z)",
+        "(inform :reply-by +20261122T101010123Z)",
         '(inform :X-team "blue")',
         '(inform :Content "x")',
         "(inform :receiver (set (agent-identifier :name b :addresses (sequence tcp://h:1))))",
@@ -105,7 +112,7 @@ common_messages = st.builds(
     encoding=st.none(),
     ontology=st.none(),
     reply_with=st.none(),
-    reply_by=st.none(),
+    reply_by=st.none() | st.integers(0, 4_000_000_000_000).map(lambda ms: ms / 1000),
     user=st.just(()),
 )
 
@@ -147,7 +154,11 @@ def test_mutated_messages_never_fool_the_fast_reader(text):
     found = acl_fast.split(text, DEFAULT_LIMITS)
     result = full(text)
     if found is not None and found[0].lower() in {p.value for p in Performative}:
-        assert isinstance(result, AclMessage), f"fast path accepted what the full reader rejects: {text!r}"
-        assert parse(text) == result
+        if isinstance(result, AclMessage):
+            assert parse(text) == result
+        else:  # only the date of a reply-by is left for the caller to check
+            assert "reply-by" in dict(found[2]), f"fast path accepted what the full reader rejects: {text!r}"
+            with pytest.raises(result, match="reply-by"):
+                parse(text)
         performative, end, _ = found
         assert performative.lower() == result.performative.value and text[:end].endswith(performative)
