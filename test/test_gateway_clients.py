@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import time
 from pathlib import Path
 
@@ -15,6 +16,7 @@ import pytest
 
 from cf_commag.client import Agent
 from cf_commag.gateway_client import GatewayClient
+from cf_lang.acl import Performative
 from cf_system import start_commag, start_component, start_gateway
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -112,3 +114,32 @@ def test_vanished_agent_is_withdrawn(framework, procs, probe, tag):
     gw.sock.close()  # no bye: it just vanishes
     probe.wait_kind(name, "withdrawn", timeout=20)
     time.sleep(0.1)
+
+
+def test_a_hung_ros_agent_stalls_nobody_and_loses_nothing(framework, procs, probe, tag):
+    """A ROS agent that takes nothing (stopped) fills its queue in DDS, after which every publish
+    to it would block and fail. The gateway holds its messages instead, goes on serving everyone
+    (the flooding client included), and delivers them all once the agent runs again."""
+    hung = f"hung_{tag}"
+    proc = start_component(procs, tag, hung, "--service-class", "Hearing", "--lease", "120")
+    probe.wait_kind(hung, "registered")
+    line = '(inform :receiver (set (agent-identifier :name {})) :content "x" :reply-with r{})\n'
+    with GatewayClient("127.0.0.1", framework, name=f"flood_{tag}", timeout=60) as flood:
+        flood.send_line(line.format(hung, 0).strip())  # answered: the inbox is matched
+        assert flood.receive().performative is Performative.NOT_UNDERSTOOD
+        os.kill(proc.pid, signal.SIGSTOP)
+        try:
+            # One DDS sample per message (a ping after each, so that no two are read in one
+            # go and relayed together), more than DDS queues for a reader that takes nothing
+            # (5000 here): the client's own connection is served all along...
+            n = 6000
+            for i in range(1, n + 1):
+                flood.file.write(line.format(hung, i).encode())
+                flood.ping()
+            with GatewayClient("127.0.0.1", framework, name=f"other_{tag}") as other:  # ...and everyone else
+                reply = other.request(f"kick_{tag}", "(exec Player kick :playerNumber 9 :whichTeam our :power 50)")
+                assert reply.performative is Performative.INFORM
+        finally:
+            os.kill(proc.pid, signal.SIGCONT)
+        answered = {flood.receive().in_reply_to for _ in range(n)}  # each one answered: none lost
+        assert answered == {f"r{i}" for i in range(1, n + 1)}

@@ -49,7 +49,7 @@ from cf_lang.taxonomy import Direction
 from .convert import directory_from_msg
 from .records import Directory, Entry, Query, valid_agent_name
 from .registry import INCARNATION_KEY, SUPERSEDED
-from .samples import pack_lines, sample_messages
+from .samples import pack_counted, pack_lines, sample_messages
 
 INBOX_QOS = QoSProfile(
     history=HistoryPolicy.KEEP_ALL,
@@ -77,11 +77,19 @@ class Outbox:
     So messages for a receiver are held until its inbox is matched, then sent
     in order by :meth:`flush` (call it from a timer). Messages held longer
     than ``hold_seconds`` are dropped and counted in ``undeliverable``.
+
+    A receiver that is alive but takes nothing (hung, stopped) fills its
+    queue in DDS; then a publish blocks for 100 ms and fails. Its messages
+    are held the same way, and only one publish per ``retry_seconds`` is
+    tried for it, so that the sender's thread is not stalled message after
+    message.
     """
 
-    def __init__(self, node: Node, *, hold_seconds: float = 10.0):
+    def __init__(self, node: Node, *, hold_seconds: float = 10.0, retry_seconds: float = 0.5):
         self._node = node
         self._hold = hold_seconds
+        self._retry = retry_seconds
+        self._stalled: dict[str, float] = {}  # receiver -> when to try publishing to it again
         self._publishers: dict[str, object] = {}
         self._held: dict[str, list[tuple[float, str]]] = {}
         self._matched: dict[str, object] = {}  # receivers whose inbox was seen matched: publish at once
@@ -127,7 +135,10 @@ class Outbox:
     def _send(self, receiver: str, text: str) -> None:
         pub = self._matched.get(receiver)
         if pub is not None:
-            pub.publish(String(data=text))
+            try:
+                pub.publish(String(data=text))
+            except RCLError:
+                self._stall(receiver, [(time.monotonic(), text)])
             return
         with self._lock:
             pub = self._publishers.get(receiver)
@@ -140,12 +151,30 @@ class Outbox:
                 self._publishers[receiver] = pub
             held = self._held.get(receiver)
             if held is None and pub.get_subscription_count() > 0:  # (again) matched: send at once
+                try:
+                    pub.publish(String(data=text))
+                except RCLError:
+                    self._stall_locked(receiver, [(time.monotonic(), text)])
+                    return
                 self._matched[receiver] = pub
-                pub.publish(String(data=text))
                 return
             # Not matched (yet, or any more: the receiver died and may be relaunched): hold it.
             self._matched.pop(receiver, None)
             self._held.setdefault(receiver, []).append((time.monotonic(), text))
+
+    def _stall(self, receiver: str, messages: list[tuple[float, str]]) -> None:
+        with self._lock:
+            self._stall_locked(receiver, messages)
+
+    def _stall_locked(self, receiver: str, messages: list[tuple[float, str]]) -> None:
+        """The receiver's queue is full: hold these (in order, after what waits) and retry later."""
+        self._matched.pop(receiver, None)
+        self._held.setdefault(receiver, []).extend(messages)
+        self._stalled[receiver] = time.monotonic() + self._retry
+        self._node.get_logger().warning(
+            f"{receiver} takes no messages (hung?): holding them for up to {self._hold:.0f} s",
+            throttle_duration_sec=5.0,
+        )
 
     def _on_matched(self, receiver: str, status) -> None:
         if status.current_count == 0:
@@ -162,9 +191,17 @@ class Outbox:
         now = time.monotonic()
         for receiver, held in list(self._held.items()):
             pub = self._publishers[receiver]
-            if pub.get_subscription_count() > 0:
-                for text in pack_lines([text for _, text in held]):
-                    pub.publish(String(data=text))
+            if self._stalled.get(receiver, 0.0) <= now and pub.get_subscription_count() > 0:
+                self._stalled.pop(receiver, None)
+                sent = 0
+                try:
+                    for count, text in pack_counted([text for _, text in held]):
+                        pub.publish(String(data=text))
+                        sent += count
+                except RCLError:  # still full: keep the rest, in order
+                    del self._held[receiver]
+                    self._stall_locked(receiver, held[sent:])
+                    continue
                 del self._held[receiver]
                 self._matched[receiver] = pub
             elif now - held[0][0] > self._hold:

@@ -20,14 +20,19 @@ SAMPLE_MAX_MESSAGES = 32
 
 def pack_lines(texts: list[str]) -> Iterable[str]:
     """Join messages into as few samples as the sample limits allow, in order."""
+    return (sample for _, sample in pack_counted(texts))
+
+
+def pack_counted(texts: list[str]) -> Iterable[tuple[int, str]]:
+    """Like :func:`pack_lines`, with how many of the texts each sample holds."""
     start = size = 0
     for i, text in enumerate(texts):
         if i > start and (size + len(text) > SAMPLE_MAX_BYTES or i - start >= SAMPLE_MAX_MESSAGES):
-            yield "\n".join(texts[start:i])
+            yield i - start, "\n".join(texts[start:i])
             start, size = i, 0
         size += len(text) + 1
     if start < len(texts):
-        yield "\n".join(texts[start:])
+        yield len(texts) - start, "\n".join(texts[start:])
 
 
 def sample_messages(data: str) -> list[str]:
