@@ -554,7 +554,11 @@ class Agent:
         self._handlers[protocol] = handler
 
     def _on_inbox(self, msg: String) -> None:
-        texts = sample_messages(msg.data)
+        data = msg.data
+        if "\n" not in data:  # one message, the common case
+            self._on_text(data)
+            return
+        texts = sample_messages(data)
         if len(texts) == 1:
             self._on_text(texts[0])
             return

@@ -389,21 +389,36 @@ def parse(text: str | bytes, *, limits: Limits = DEFAULT_LIMITS) -> AclMessage:
 
 def _from_pairs(performative: Performative, pairs: list[tuple[str, str]]) -> AclMessage:
     """The message :func:`acl_fast.split` found: every value there is checked already."""
-    fields: dict = {"performative": performative, "language": None, "ontology": None}
+    values = [performative, None, (), None, (), None, None, None, None, None, None, None, None, ()]
     for key, value in pairs:
-        if key == "receiver":
-            fields["receivers"] = tuple(AgentId(name) for name in acl_fast.names(value))
-        elif key == "sender":
-            fields["sender"] = AgentId(acl_fast.names(value)[0])
-        elif key == "content":
-            fields["content"] = unescape(value[1:-1])
-        elif key == "reply-to":
-            fields["reply_to"] = tuple(AgentId(name) for name in acl_fast.names(value))
-        elif key == "reply-by":
-            fields["reply_by"] = parse_datetime(value)
+        index = _FIELD_INDEX[key]
+        if index <= 4 and index != 3:  # sender, receiver, reply-to
+            agents = _agents_in(value)
+            values[index] = agents[0] if index == 1 else agents
+        elif index == 12:
+            values[12] = parse_datetime(value)
         else:
-            fields[_STRING_PARAMS[key]] = unescape(value[1:-1]) if value[0] == '"' else value
-    return AclMessage(**fields)
+            values[index] = unescape(value[1:-1]) if value[0] == '"' else value
+    return _new_message(AclMessage, values)
+
+
+# Parameter name -> index of its field in AclMessage (a tuple, built here directly).
+_FIELD_INDEX = {
+    **{name.replace("_", "-"): i for i, name in enumerate(AclMessage._fields)},
+    "receiver": AclMessage._fields.index("receivers"),
+}
+_new_message = tuple.__new__
+_AGENT_LISTS: dict[str, tuple[AgentId, ...]] = {}
+
+
+def _agents_in(value: str) -> tuple[AgentId, ...]:
+    """The agents in an agent-identifier or set text; the same few teammates come again and again."""
+    agents = _AGENT_LISTS.get(value)
+    if agents is None:
+        agents = tuple(AgentId(name) for name in acl_fast.names(value))
+        if len(_AGENT_LISTS) < 4096:
+            _AGENT_LISTS[value] = agents
+    return agents
 
 
 def check_content(msg: AclMessage) -> None:
