@@ -409,9 +409,13 @@ class Gateway:
     def flush_relayed(self) -> None:
         self._flush_due = False
         outgoing, self._outgoing = self._outgoing, {}
+        publish = self.bus.publish
         for receiver, texts in outgoing.items():
-            for chunk in pack_lines(texts):
-                self.bus.publish(receiver, chunk)
+            if len(texts) == 1:
+                publish(receiver, texts[0])
+            else:
+                for chunk in pack_lines(texts):
+                    publish(receiver, chunk)
 
     def due_renewals(self, now: float) -> list[Record]:
         """Records whose agents showed life within their lease: renew those, and only those.

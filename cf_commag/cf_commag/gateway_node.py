@@ -23,7 +23,7 @@ from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic, make_executor
 from .commag_node import EVENTS_QOS
 from .convert import directory_from_msg, entry_from_msg, query_to_request, to_msg
 from .gateway import Gateway, GatewayConfig, form
-from .records import Directory, Entry, Query, Record
+from .records import Entry, Query, Record
 from .registry import Result
 
 _PARAMS = {
@@ -62,7 +62,7 @@ class GatewayNode(Node):
         self._register = self.create_client(Register, f"{commag}/register")
         self._deregister = self.create_client(Deregister, f"{commag}/deregister")
         self._lookup = self.create_client(Lookup, f"{commag}/lookup")
-        self._directory = Directory()
+        self._known: frozenset[str] = frozenset()  # agents not withdrawn, from the registry snapshot
         self.create_subscription(RegistryMsg, f"{commag}/registry", self._on_snapshot, SNAPSHOT_QOS)
         self.create_subscription(RegistryEvent, f"{commag}/events", self._on_event, EVENTS_QOS)
         self._outbox = Outbox(self)
@@ -153,8 +153,7 @@ class GatewayNode(Node):
         return [entry_from_msg(p) for p in res.providers]
 
     def known(self, name: str) -> bool:
-        entry = self._directory.get(name)
-        return entry is not None and entry.state.value != "withdrawn"
+        return name in self._known
 
     def publish(self, receiver: str, text: str) -> None:
         self._outbox.send(receiver, text)
@@ -188,7 +187,9 @@ class GatewayNode(Node):
     # ---- ROS callbacks ------------------------------------------------------
 
     def _on_snapshot(self, msg: RegistryMsg) -> None:
-        self._directory = directory_from_msg(msg)
+        # Asked once per relayed message: a set, made once per snapshot.
+        entries = directory_from_msg(msg).entries()
+        self._known = frozenset(e.name for e in entries if e.state.value != "withdrawn")
 
     def _on_event(self, ev: RegistryEvent) -> None:
         if not self._watchers:
