@@ -35,6 +35,7 @@ from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.serialization import deserialize_message
 from rclpy.task import Future
 from std_msgs.msg import String
 
@@ -50,6 +51,7 @@ from .convert import directory_from_msg
 from .records import Directory, Entry, Query, valid_agent_name
 from .registry import INCARNATION_KEY, SUPERSEDED
 from .samples import pack_counted, pack_lines, sample_messages
+from .string_cdr import from_cdr, to_cdr
 
 INBOX_QOS = QoSProfile(
     history=HistoryPolicy.KEEP_ALL,
@@ -62,6 +64,14 @@ SNAPSHOT_QOS = QoSProfile(
     durability=DurabilityPolicy.TRANSIENT_LOCAL,
     history=HistoryPolicy.KEEP_LAST,
 )
+
+
+def sample_text(sample: bytes) -> str:
+    """The text of an inbox sample taken serialized (``raw=True``)."""
+    try:
+        return from_cdr(sample)
+    except ValueError:  # an encapsulation string_cdr does not read: rclpy does
+        return deserialize_message(sample, String).data
 
 
 def inbox_topic(name: str) -> str:
@@ -136,7 +146,7 @@ class Outbox:
         pub = self._matched.get(receiver)
         if pub is not None:
             try:
-                pub.publish(String(data=text))
+                pub.publish(to_cdr(text))
             except RCLError:
                 self._stall(receiver, [(time.monotonic(), text)])
             return
@@ -152,7 +162,7 @@ class Outbox:
             held = self._held.get(receiver)
             if held is None and pub.get_subscription_count() > 0:  # (again) matched: send at once
                 try:
-                    pub.publish(String(data=text))
+                    pub.publish(to_cdr(text))
                 except RCLError:
                     self._stall_locked(receiver, [(time.monotonic(), text)])
                     return
@@ -196,7 +206,7 @@ class Outbox:
                 sent = 0
                 try:
                     for count, text in pack_counted([text for _, text in held]):
-                        pub.publish(String(data=text))
+                        pub.publish(to_cdr(text))
                         sent += count
                 except RCLError:  # still full: keep the rest, in order
                     del self._held[receiver]
@@ -363,7 +373,8 @@ class Agent:
         self._pending_since = 0.0
         self._closed = False
 
-        self._inbox = node.create_subscription(String, inbox_topic(name), self._on_inbox, INBOX_QOS)
+        # Taken serialized (see string_cdr): no message object built per sample.
+        self._inbox = node.create_subscription(String, inbox_topic(name), self._on_inbox, INBOX_QOS, raw=True)
         self._register_client = node.create_client(Register, f"{commag}/register")
         self._deregister_client = node.create_client(Deregister, f"{commag}/deregister")
         self._lookup_client = node.create_client(Lookup, f"{commag}/lookup")
@@ -553,8 +564,8 @@ class Agent:
             raise ValueError(f"unknown protocol {protocol!r}")
         self._handlers[protocol] = handler
 
-    def _on_inbox(self, msg: String) -> None:
-        data = msg.data
+    def _on_inbox(self, sample: bytes) -> None:
+        data = sample_text(sample)
         if "\n" not in data:  # one message, the common case
             self._on_text(data)
             return
@@ -568,9 +579,9 @@ class Agent:
                 messages.append(acl.parse(text))
             except LanguageError:
                 messages.append(text)
-        if all(type(m) is str for m in messages) and _parses(msg.data):
+        if all(type(m) is str for m in messages) and _parses(data):
             # Not a batch but one message written over several lines (by a foreign sender).
-            self._on_text(msg.data)
+            self._on_text(data)
             return
         with self._outbox.batch():  # what the handlers answer goes out as one sample per receiver
             for message in messages:

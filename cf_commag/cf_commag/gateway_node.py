@@ -19,7 +19,7 @@ from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.msg import RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 
-from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic, make_executor
+from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic, make_executor, sample_text
 from .commag_node import EVENTS_QOS
 from .convert import directory_from_msg, entry_from_msg, query_to_request, to_msg
 from .gateway import Gateway, GatewayConfig, form
@@ -159,13 +159,13 @@ class GatewayNode(Node):
         self._outbox.send(receiver, text)
 
     def open_inbox(self, name: str, deliver: Callable[[str], bool]) -> None:
-        def on_message(msg: String) -> None:
+        def on_message(sample: bytes) -> None:
             # On the executor thread: the gateway writes it to the socket from here.
             # A sample may hold several messages, one per line: the gateway's wire format too.
-            deliver(msg.data)
+            deliver(sample_text(sample))
 
         def create() -> None:
-            self._inboxes[name] = self.create_subscription(String, inbox_topic(name), on_message, INBOX_QOS)
+            self._inboxes[name] = self.create_subscription(String, inbox_topic(name), on_message, INBOX_QOS, raw=True)
 
         self._on_ros(create)
 
