@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from cf_commag.client import Agent
-from cf_commag.gateway_client import GatewayClient
+from cf_commag.gateway_client import GatewayClient, GatewayError
 from cf_lang.acl import Performative
 from cf_system import start_commag, start_component, start_gateway
 
@@ -125,8 +125,16 @@ def test_a_hung_ros_agent_stalls_nobody_and_loses_nothing(framework, procs, prob
     probe.wait_kind(hung, "registered")
     line = '(inform :receiver (set (agent-identifier :name {})) :content "x" :reply-with r{})\n'
     with GatewayClient("127.0.0.1", framework, name=f"flood_{tag}", timeout=60) as flood:
-        flood.send_line(line.format(hung, 0).strip())  # answered: the inbox is matched
-        assert flood.receive().performative is Performative.NOT_UNDERSTOOD
+        deadline = time.monotonic() + 30
+        while True:  # until the gateway's registry cache knows it and its answer comes back
+            flood.send_line(line.format(hung, 0).strip())
+            try:
+                assert flood.receive().performative is Performative.NOT_UNDERSTOOD
+                break
+            except GatewayError as exc:
+                if "unknown receiver" not in str(exc) or time.monotonic() > deadline:
+                    raise
+                time.sleep(0.1)
         os.kill(proc.pid, signal.SIGSTOP)
         try:
             # One DDS sample per message (a ping after each, so that no two are read in one

@@ -284,6 +284,7 @@ class Session:
     }
 
     def _send_fast(self, written: str, end: int, pairs: list[tuple[str, str]], text: str) -> None:
+        """An ACL line the fast reader split (cf_lang.acl_fast): only the reply-by date is left to check."""
         sender = receivers = None
         for key, value in pairs:
             if key == "receiver":
