@@ -219,7 +219,8 @@ class Outbox:
                 dropped = sum(m.count("\n") + 1 for t, m in held if now - t > self._hold)
                 self.undeliverable += dropped
                 self._node.get_logger().warning(
-                    f"no inbox of {receiver!r} appeared: {dropped} message(s) dropped",
+                    f"{receiver!r} took no messages for {self._hold:.0f} s (no inbox, or hung):"
+                    f" {dropped} message(s) dropped",
                     throttle_duration_sec=5.0,
                 )
                 if fresh:
