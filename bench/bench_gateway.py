@@ -211,8 +211,8 @@ def main() -> None:
     rclpy.init()
     try:
         start_commag(procs, tag, tmp)
-        kind = args.executor
         port_file = tmp / "port"
+        kind = args.executor
         start_gateway(procs, tag, port_file, f"executor:={kind}")
         echo = f"echo_{tag}"
         helper = str(HERE / "helpers/echo_agents.py")
@@ -225,7 +225,7 @@ def main() -> None:
         deadline = time.monotonic() + 30
         while not (port_file.exists() and all("ready" in procs.log(n) for n in ("echo", "acl-echo", "tcp-echo"))):
             if time.monotonic() > deadline:
-                raise RuntimeError("the gateway, the echo agent or the TCP echo did not start")
+                raise RuntimeError("the gateway, an echo agent or the TCP echo did not start")
             time.sleep(0.1)
         port = int(port_file.read_text())
         time.sleep(2.0)  # the echo agent registers; the gateway's registry cache learns it

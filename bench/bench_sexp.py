@@ -74,6 +74,15 @@ def batch_seconds(fn, arg, n: int) -> float:
     return time.perf_counter() - start
 
 
+def rates(variants: dict, n: int, rounds: int) -> dict[str, float]:
+    """Calls per second of each ``name: (fn, arg)``: batches of n, interleaved round by round, medians."""
+    times: dict[str, list[float]] = {k: [] for k in variants}
+    for _ in range(rounds):
+        for name, (fn, arg) in variants.items():
+            times[name].append(batch_seconds(fn, arg, n))
+    return {k: n / statistics.median(v) for k, v in times.items()}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--rounds", type=int, default=15)
@@ -89,12 +98,7 @@ def main() -> None:
             "cf_lang.dumps": (dumps, ours_value),
             "sexpdata.dumps": (sexpdata.dumps, theirs_value),
         }
-        times: dict[str, list[float]] = {k: [] for k in variants}
-        for _ in range(args.rounds):
-            for name, (fn, arg) in variants.items():
-                times[name].append(batch_seconds(fn, arg, n))
-        rate = {k: n / statistics.median(v) for k, v in times.items()}
-        rows.append((label, len(text), rate))
+        rows.append((label, len(text), rates(variants, n, args.rounds)))
     print(
         "| input | bytes | cf_lang loads msg/s | sexpdata loads msg/s | ratio | cf_lang dumps msg/s "
         "| sexpdata dumps msg/s | ratio |"
@@ -140,12 +144,7 @@ def acl_table(rounds: int) -> None:
             "to_text": (to_text, msg),
             "general": (lambda m: dumps(to_sexp(m)), msg),
         }
-        n = 20_000
-        times: dict[str, list[float]] = {k: [] for k in variants}
-        for _ in range(rounds):
-            for name, (fn, arg) in variants.items():
-                times[name].append(batch_seconds(fn, arg, n))
-        r = {k: n / statistics.median(v) for k, v in times.items()}
+        r = rates(variants, 20_000, rounds)
         print(
             f"| {label} | {len(text)} | {r['parse']:,.0f} | {r['full']:,.0f} | **{r['parse'] / r['full']:.1f}x** "
             f"| {r['to_text']:,.0f} | {r['general']:,.0f} | **{r['to_text'] / r['general']:.1f}x** |"

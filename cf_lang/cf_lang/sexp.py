@@ -153,7 +153,7 @@ def _classify(tok):
         if len(tok) < 2:
             raise _Bad
         body = tok[1:-1]
-        return _ESCAPE_RE.sub(_unescape_one, body) if "\\" in body else body
+        return unescape(body)
     if first == ":":
         if len(tok) < 2 or tok[1] == ":":
             raise _Bad
