@@ -15,6 +15,7 @@ import random
 import statistics
 
 from cf_decision.policy import cycles_to_ball, decide
+from cf_decision.requests import same_action
 from cf_sim_backend.chaser import chase_commands
 from cf_sim_backend.perception import observe
 from cf_sim_backend.sim import Simulator
@@ -45,9 +46,9 @@ class PolicyTeam:
         for n, st in states.items():
             me = w.player(self.side, n)
             decision = decide(st, n, self.size, claims)
-            key = decision.key()
+            key = (decision.method, decision.action)
             current = self.current.get(n)
-            if current is None or current[0] != key:
+            if current is None or current[0][0] != key[0] or not same_action(current[0][1], key[1]):
                 try:
                     skill = skill_for(decision.method, decision.action, self.side, w, me)
                 except SkillError:

@@ -536,7 +536,13 @@ class Agent:
         if not valid_agent_name(receiver):
             raise ValueError(f"not an agent name: {receiver!r} (did a lookup find no provider?)")
         conv, first = protocols.initiate(
-            protocol, me=self.me, peer=AgentId(receiver), content=content, now=time.monotonic(), timeout=timeout
+            protocol,
+            me=self.me,
+            peer=AgentId(receiver),
+            content=content,
+            now=time.monotonic(),
+            wall=time.time(),
+            timeout=timeout,
         )
         future = Future()
         self._table.add(conv)

@@ -96,8 +96,8 @@ class CommagNode(LifecycleNode):
         self._active = False
         self._registry: Registry | None = None
         self._launcher: Launcher | None = None
-        self._timers = []
-        self._services = []
+        self._tick_timers = []
+        self._commag_services = []
         self._store_path: Path | None = None
         self._saver: store.Saver | None = None
         self._last_diag = 0.0
@@ -155,7 +155,7 @@ class CommagNode(LifecycleNode):
         self._events_pub = self.create_lifecycle_publisher(RegistryEvent, "~/events", EVENTS_QOS)
         self._snapshot_pub = self.create_lifecycle_publisher(RegistryMsg, "~/registry", SNAPSHOT_QOS)
         self._diag_pub = self.create_lifecycle_publisher(DiagnosticArray, "/diagnostics", 10)
-        self._services = [
+        self._commag_services = [
             self.create_service(Register, "~/register", self._on_register),
             self.create_service(Deregister, "~/deregister", self._on_deregister),
             self.create_service(Lookup, "~/lookup", self._on_lookup),
@@ -166,23 +166,23 @@ class CommagNode(LifecycleNode):
         result = super().on_activate(state)
         self._active = True
         self._last_tick = time.monotonic()
-        self._timers = [self.create_timer(self._cfg.tick_period, self._on_tick)]
+        self._tick_timers = [self.create_timer(self._cfg.tick_period, self._on_tick)]
         self._publish_snapshot()
         self.get_logger().info("active")
         return result
 
     def on_deactivate(self, state: LifecycleState) -> TransitionCallbackReturn:
         self._active = False
-        for timer in self._timers:
+        for timer in self._tick_timers:
             self.destroy_timer(timer)
-        self._timers = []
+        self._tick_timers = []
         self.close_store()
         return super().on_deactivate(state)
 
     def on_cleanup(self, state: LifecycleState) -> TransitionCallbackReturn:
-        for srv in self._services:
+        for srv in self._commag_services:
             self.destroy_service(srv)
-        self._services = []
+        self._commag_services = []
         for pub in (self._events_pub, self._snapshot_pub, self._diag_pub):
             self.destroy_lifecycle_publisher(pub)
         self._registry = None

@@ -194,3 +194,28 @@ def test_a_sample_may_carry_several_messages(ros, unique, tmp_path):
     # The three answers of the batch went back to us together, as one sample.
     ros.spin_until(lambda: sum(len(a.data.split("\n")) for a in answers) >= 4, what="answers")
     assert len(answers[0].data.split("\n")) == 3
+
+
+def test_reply_by_on_the_wire_is_todays_date_and_the_timeout_still_works(ros, unique, tmp_path):
+    """What a FIPA peer reads: the request text on the receiver's inbox carries a wall-clock :reply-by."""
+    import re
+    import time
+
+    from cf_lang.acl import parse_datetime
+
+    commag = start_commag(ros, unique, tmp_path)
+    asker = agent(ros, f"asker_{unique}", "PlayerDecision", commag)
+    peer = ros.node(f"peer_{unique}")  # a plain reader of the inbox: it never answers
+    seen: list[str] = []
+    from cf_commag.client import INBOX_QOS
+
+    peer.create_subscription(String, inbox_topic(f"silent_{unique}"), lambda m: seen.append(m.data), INBOX_QOS)
+    sent_at = time.time()
+    future = asker.request(f"silent_{unique}", "(val Game time)", protocol="fipa-query", timeout=1.5)
+    ros.spin_until(lambda: seen, what="the request on the wire")
+    stamp = re.search(r":reply-by (\S+?)\)?(\s|$)", seen[0])
+    assert stamp, seen[0]
+    reply_by = parse_datetime(stamp.group(1).rstrip(")"))
+    assert sent_at + 1.0 < reply_by < time.time() + 2.0, (seen[0], sent_at)
+    ros.spin_until(future.done, timeout=10, what="the timeout")
+    assert future.result().state == "timed-out"

@@ -131,3 +131,44 @@ def test_missed_lease_is_seen_as_events(ros, unique, tmp_path):
     ros.spin_until(lambda: [e.kind_name for e in events][-1:] == ["withdrawn"], what="withdrawal")
     assert [e.kind_name for e in events] == ["registered", "suspect", "withdrawn"]
     assert events[-1].record.state == "withdrawn"
+
+
+def test_lifecycle_services_answer_as_ros2_lifecycle_uses_them(ros, unique, tmp_path):
+    """get_state / get_available_states / get_available_transitions / change_state, the way `ros2 lifecycle` asks."""
+    from lifecycle_msgs.msg import State, Transition
+    from lifecycle_msgs.srv import ChangeState, GetAvailableStates, GetAvailableTransitions, GetState
+
+    make_commag(ros, unique, tmp_path)
+    cli = ros.node(f"cli_{unique}")
+    base = f"/commag_{unique}"
+    get_state = cli.create_client(GetState, f"{base}/get_state")
+    states = cli.create_client(GetAvailableStates, f"{base}/get_available_states")
+    transitions = cli.create_client(GetAvailableTransitions, f"{base}/get_available_transitions")
+    change = cli.create_client(ChangeState, f"{base}/change_state")
+    register = cli.create_client(Register, f"{base}/register")
+
+    assert ros.call(get_state, GetState.Request()).current_state.label == "unconfigured"
+    labels = {s.label for s in ros.call(states, GetAvailableStates.Request()).available_states}
+    assert {"unconfigured", "inactive", "active", "finalized"} <= labels
+
+    def step(transition_id: int, expect: str) -> None:
+        assert ros.call(change, ChangeState.Request(transition=Transition(id=transition_id))).success
+        assert ros.call(get_state, GetState.Request()).current_state.label == expect
+
+    step(Transition.TRANSITION_CONFIGURE, "inactive")
+    step(Transition.TRANSITION_ACTIVATE, "active")
+    # The ComMAg's own services answer after transitions driven from outside.
+    assert ros.call(register, Register.Request(component=record("blue_1_kick"))).accepted
+    offered = [
+        t.transition.label for t in ros.call(transitions, GetAvailableTransitions.Request()).available_transitions
+    ]
+    assert "deactivate" in offered
+    step(Transition.TRANSITION_DEACTIVATE, "inactive")
+    assert not ros.call(register, Register.Request(component=record("blue_1_kick"))).accepted
+    step(Transition.TRANSITION_ACTIVATE, "active")  # timers and services come back
+    assert ros.call(register, Register.Request(component=record("blue_2_kick"))).accepted
+    step(Transition.TRANSITION_DEACTIVATE, "inactive")
+    step(Transition.TRANSITION_CLEANUP, "unconfigured")
+    step(Transition.TRANSITION_CONFIGURE, "inactive")  # configure again after cleanup
+    step(Transition.TRANSITION_INACTIVE_SHUTDOWN, "finalized")
+    assert ros.call(get_state, GetState.Request()).current_state.id == State.PRIMARY_STATE_FINALIZED

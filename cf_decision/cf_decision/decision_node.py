@@ -24,6 +24,7 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 
 from cf_commag.client import Agent, own_launch_command, run
+from cf_commag.given_parameters import parameters_for
 from cf_lang import Exec, LanguageError, parse_expr
 from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.expr import to_sexp
@@ -31,6 +32,7 @@ from cf_lang.ontology import Team, WorldState
 from cf_lang.sexp import dumps
 
 from .policy import Decision, cycles_to_ball, decide
+from .requests import ActionRequests
 
 _PARAMS = {
     "team": ("blue", "team name, as the components register it"),
@@ -44,17 +46,23 @@ _PARAMS = {
 PERCEPTION_SILENCE = 1.0  # seconds without an inform before the perception provider is replaced
 
 
+def _agent_name(p: dict) -> str:
+    return p["name"] or f"{p['team']}_{p['number']}_decision{'_standby' if p['standby'] else ''}"
+
+
 class DecisionNode(Node):
     """Decision of one player (service class PlayerDecision). Parameters: _PARAMS."""
 
-    def __init__(self, **kwargs):
-        super().__init__("decision", **kwargs)
+    def __init__(self, node_name: str | None = None, **kwargs):
+        if node_name is None:  # named after its agent, so that ros2 node/param/... can tell players apart
+            node_name = _agent_name(parameters_for({n: d for n, (d, _) in _PARAMS.items()}, kwargs))
+        super().__init__(node_name, **kwargs)
         for name, (default, description) in _PARAMS.items():
             self.declare_parameter(name, default, ParameterDescriptor(description=description))
         p = {name: self.get_parameter(name).value for name in _PARAMS}
         self.team, self.number, self.team_size = p["team"], int(p["number"]), int(p["team_size"])
         self.standby = bool(p["standby"])
-        name = p["name"] or f"{self.team}_{self.number}_decision{'_standby' if self.standby else ''}"
+        name = _agent_name(p)
         self.agent = Agent(
             self,
             name=name,
@@ -70,10 +78,9 @@ class DecisionNode(Node):
         self.perception: str | None = None
         self.subscription = None
         self.last_inform = 0.0
-        self.action_request = None
-        self.current: tuple | None = None
-        self.stats = {"requests": 0, "done": 0, "failed": 0, "cycles": 0}
+        self.requests = ActionRequests()
         self.create_timer(0.2, self._watch_providers)
+        self.create_timer(30.0, lambda: self.get_logger().info(f"requests: {self.requests.stats.line()}"))
 
     # ---- wiring ---------------------------------------------------------------
 
@@ -114,12 +121,11 @@ class DecisionNode(Node):
             return
         if not isinstance(state, WorldState) or not self._acting():
             return
-        self.stats["cycles"] += 1
         now = time.monotonic()
         claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
         decision = decide(state, self.number, self.team_size, claims)
         self._announce(state)
-        if decision.key() != self.current or self.action_request is None or self.action_request.done():
+        if self.requests.wants(decision.method, decision.action):
             self._request(decision)
 
     def _request(self, decision: Decision) -> None:
@@ -128,16 +134,14 @@ class DecisionNode(Node):
             return
         expr = Exec("Player", decision.method, {"playerNumber": self.number, "whichTeam": Team.OUR}, decision.action)
         content = dumps(to_sexp(expr))
-        self.current = decision.key()
-        self.stats["requests"] += 1
-        self.action_request = self.agent.request(provider, content, timeout=3.0)
-        self.action_request.add_done_callback(self._on_answer)
+        future = self.agent.request(provider, content, timeout=3.0)
+        self.requests.sent(decision.method, decision.action, future)
+        future.add_done_callback(self._on_answer)
 
     def _on_answer(self, future) -> None:
-        reply = future.result()
-        self.stats["done" if reply.ok else "failed"] += 1
-        if not reply.ok:
-            self.current = None  # ask again next cycle
+        # A request we replaced is answered failure by the action component: that says nothing
+        # about the request in force, which must not be sent again because of it.
+        self.requests.answered(future, future.result().ok)
 
     def _announce(self, state: WorldState) -> None:
         """Tell team-mates' decision components how soon I can reach the ball."""

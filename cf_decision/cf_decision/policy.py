@@ -41,10 +41,6 @@ class Decision:
     action: object  # an ontology action model
     why: str
 
-    def key(self) -> tuple:
-        """What makes two decisions the same request (so it is not sent again)."""
-        return (self.method, self.action)
-
 
 def _xy(pos: AbsolutePositioning | None) -> tuple[float, float] | None:
     return (pos.x, pos.y) if pos is not None else None

@@ -139,13 +139,15 @@ class Conversation:
         peer: AgentId,
         conversation_id: str,
         reply_by: float | None = None,
+        deadline: float | None = None,
     ):
         self.spec = spec
         self.role = role
         self.me = me
         self.peer = peer
         self.conversation_id = conversation_id
-        self.reply_by = reply_by
+        self.reply_by = reply_by  # wall-clock epoch seconds: what the opening message carries
+        self.deadline = deadline  # the same moment on the caller's own clock (the ``now`` it passes)
         self.state = "start"
         self.history: list[AclMessage] = []
         self._reply_with: str | None = None
@@ -216,11 +218,11 @@ class Conversation:
         Only the initiator waits; a subscription that was agreed waits for
         nothing, so it never times out here.
         """
-        if self.finished or self.reply_by is None or self.role is not Role.INITIATOR:
+        if self.finished or self.deadline is None or self.role is not Role.INITIATOR:
             return False
         if self.state in ("subscribed",):
             return False
-        if now > self.reply_by:
+        if now > self.deadline:
             self.state = "timed-out"
             return True
         return False
@@ -234,13 +236,22 @@ def initiate(
     performative: Performative | str | None = None,
     content: str,
     now: float,
+    wall: float | None = None,
     timeout: float | None = None,
     conversation_id: str | None = None,
 ) -> tuple[Conversation, AclMessage]:
-    """Open a conversation as initiator; return it and the first message to send."""
+    """Open a conversation as initiator; return it and the first message to send.
+
+    ``now`` is the caller's clock (monotonic is best), against which :meth:`Conversation.expired`
+    is later asked. ``wall`` is the wall-clock time (epoch seconds, UTC) at that same moment: a
+    ``timeout`` puts ``:reply-by wall + timeout`` on the wire, since a FIPA peer reads reply-by as
+    a date. It is required with a timeout, so a monotonic reading never reaches the wire.
+    """
     spec = PROTOCOLS.get(protocol)
     if spec is None:
         raise ProtocolError(f"unknown protocol {protocol!r}; known: {', '.join(PROTOCOLS)}")
+    if timeout is not None and wall is None:
+        raise ValueError("a timeout needs wall= (the wall-clock time at now) for the :reply-by on the wire")
     perf = Performative(performative) if performative else _DEFAULT_OPENING[spec.name]
     conv = Conversation(
         spec,
@@ -248,7 +259,8 @@ def initiate(
         me=me,
         peer=peer,
         conversation_id=conversation_id or new_conversation_id(me.name),
-        reply_by=None if timeout is None else now + timeout,
+        reply_by=None if timeout is None else wall + timeout,
+        deadline=None if timeout is None else now + timeout,
     )
     return conv, conv.send(perf, content, now=now)
 

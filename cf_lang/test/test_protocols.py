@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from cf_lang import ProtocolError
-from cf_lang.acl import AgentId, Performative, parse, to_text
+from cf_lang.acl import AgentId, Performative, format_datetime, parse, to_text
 from cf_lang.protocols import ConversationTable, initiate, not_understood, respond
 
 ME, PEER = AgentId("decision"), AgentId("action")
@@ -17,7 +17,7 @@ def wire(msg):
 
 
 def test_request_agree_inform():
-    conv, request = initiate("fipa-request", me=ME, peer=PEER, content="(exec ...)", now=0.0, timeout=1.0)
+    conv, request = initiate("fipa-request", me=ME, peer=PEER, content="(exec ...)", now=0.0, wall=0.0, timeout=1.0)
     assert request.performative is Performative.REQUEST and request.reply_by == 1.0
     server = respond(wire(request), me=PEER, now=0.1)
     assert conv.receive(wire(server.send("agree", now=0.1)), now=0.1) == "agreed"
@@ -55,9 +55,24 @@ def test_initiator_rejects_unexpected_messages():
 
 
 def test_timeout_from_reply_by():
-    conv, _ = initiate("fipa-request", me=ME, peer=PEER, content="x", now=10.0, timeout=0.5)
+    conv, _ = initiate("fipa-request", me=ME, peer=PEER, content="x", now=10.0, wall=10.0, timeout=0.5)
     assert not conv.expired(10.4)
     assert conv.expired(10.6) and conv.state == "timed-out"
+
+
+def test_reply_by_is_wall_clock_while_the_deadline_is_on_the_callers_clock():
+    # A monotonic clock reads seconds since boot; on the wire that would be a date in 1970.
+    conv, request = initiate("fipa-request", me=ME, peer=PEER, content="x", now=5.0, wall=1_795_000_000.0, timeout=2.0)
+    assert request.reply_by == 1_795_000_002.0
+    assert format_datetime(request.reply_by).startswith("2026")
+    assert "2026" in to_text(request).split(":reply-by ")[1][:4]
+    assert not conv.expired(6.9)
+    assert conv.expired(7.1)
+
+
+def test_a_timeout_without_the_wall_clock_is_refused():
+    with pytest.raises(ValueError, match="wall"):
+        initiate("fipa-request", me=ME, peer=PEER, content="x", now=5.0, timeout=2.0)
 
 
 def test_query():
@@ -68,7 +83,7 @@ def test_query():
 
 
 def test_subscribe_inform_repeatedly_then_cancel():
-    conv, sub = initiate("fipa-subscribe", me=ME, peer=PEER, content="(val WorldState)", now=0.0, timeout=1)
+    conv, sub = initiate("fipa-subscribe", me=ME, peer=PEER, content="(val WorldState)", now=0.0, wall=0.0, timeout=1)
     server = respond(wire(sub), me=PEER, now=0.0)
     assert conv.receive(wire(server.send("agree", now=0.0)), now=0.0) == "subscribed"
     for t in range(5):
@@ -81,8 +96,8 @@ def test_subscribe_inform_repeatedly_then_cancel():
 
 def test_table_correlates_and_expires():
     table = ConversationTable()
-    a, _req_a = initiate("fipa-request", me=ME, peer=PEER, content="a", now=0.0, timeout=1.0)
-    b, req_b = initiate("fipa-request", me=ME, peer=PEER, content="b", now=0.0, timeout=5.0)
+    a, _req_a = initiate("fipa-request", me=ME, peer=PEER, content="a", now=0.0, wall=0.0, timeout=1.0)
+    b, req_b = initiate("fipa-request", me=ME, peer=PEER, content="b", now=0.0, wall=0.0, timeout=5.0)
     table.add(a)
     table.add(b)
     server_b = respond(wire(req_b), me=PEER, now=0.0)

@@ -30,7 +30,7 @@ class ActionNode(PlayerComponentNode):
     SERVICE_CLASS = "Action"
 
     def __init__(self, **kwargs):
-        super().__init__("action", **kwargs)
+        super().__init__(**kwargs)
         self.commands = self.create_publisher(String, command_topic(self.p["sim"]), COMMAND_QOS)
         self.current: tuple[Skill, Responder] | None = None
         self.agent.serve("fipa-request", self._on_request)

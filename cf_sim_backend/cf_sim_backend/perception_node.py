@@ -102,7 +102,6 @@ class PerceptionNode(PlayerComponentNode):
 
     def __init__(self, **kwargs):
         super().__init__(
-            "perception",
             {
                 "noise": (0.02, "position noise: standard deviation per metre of distance"),
                 "seed": (0, "random seed of the noise"),

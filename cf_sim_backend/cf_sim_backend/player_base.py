@@ -9,6 +9,7 @@ from rclpy.node import Node
 from std_msgs.msg import String
 
 from cf_commag.client import Agent, own_launch_command
+from cf_commag.given_parameters import parameters_for
 
 from .topics import STATE_QOS, state_topic
 from .world import Side, World, world_from_snapshot
@@ -32,16 +33,18 @@ class PlayerComponentNode(Node):
     ROLE = "component"
     SERVICE_CLASS = "Service"
 
-    def __init__(self, node_name: str, extra_params: dict | None = None, **kwargs):
-        super().__init__(node_name, **kwargs)
+    def __init__(self, extra_params: dict | None = None, node_name: str | None = None, **kwargs):
         params = {**PLAYER_PARAMS, **(extra_params or {})}
+        if node_name is None:  # named after its agent, so that ros2 node/param/... can tell players apart
+            node_name = self._agent_name(parameters_for({n: d for n, (d, _) in params.items()}, kwargs))
+        super().__init__(node_name, **kwargs)
         for name, (default, description) in params.items():
             self.declare_parameter(name, default, ParameterDescriptor(description=description))
         self.p = {name: self.get_parameter(name).value for name in params}
         self.side = Side(self.p["side"])
         self.number = int(self.p["number"])
         self.team = self.p["team"] or ("blue" if self.side is Side.LEFT else "red")
-        name = self.p["name"] or f"{self.team}_{self.number}_{self.ROLE}"
+        name = self._agent_name(self.p)
         if self.p["exit_at_start"]:
             raise SystemExit(3)
         launch = own_launch_command()
@@ -60,6 +63,11 @@ class PlayerComponentNode(Node):
             commag=self.p["commag"],
             launch_command=launch,
         )
+
+    @classmethod
+    def _agent_name(cls, p: dict) -> str:
+        team = p["team"] or ("blue" if p["side"] == Side.LEFT.value else "red")
+        return p["name"] or f"{team}_{p['number']}_{cls.ROLE}"
 
     def _on_state(self, msg: String) -> None:
         try:

@@ -134,7 +134,9 @@ class Belief:
     see_time: int = -1
     sense_time: int = -1
     errors: list[str] = field(default_factory=list)
-    pending_turn: float = 0.0  # the body turn (server degrees) commanded this cycle, applied at next sense_body
+    # Turns and moves we sent, by command: (the server's counter of it when sent, the sense_body
+    # cycle then, its effect). Applied once a sense_body's counter shows the server executed it.
+    pending: dict[str, tuple[int | None, int, tuple[float, ...]]] = field(default_factory=dict)
 
     # ---- reading the server ---------------------------------------------------
 
@@ -209,9 +211,10 @@ class Belief:
         for name in ("kick", "dash", "turn", "turn_neck", "catch", "move", "change_view", "say"):
             if name in parts and isinstance(parts[name][0], (int, float)):
                 self.counters[name] = int(parts[name][0])
-        # Dead reckoning: the body turned as commanded; it moved by this cycle's speed before its decay.
-        me.body = norm_deg(me.body + self.pending_turn)
-        self.pending_turn = 0.0
+        # Dead reckoning: the body turned as commanded, if the server executed the turn (a command
+        # that came late, on a loaded machine, runs a cycle later or never, and a replay runs none);
+        # it moved by this cycle's speed before its decay.
+        self._apply_executed()
         if "speed" in parts and len(parts["speed"]) == 2:
             amount, direction = (float(v) for v in parts["speed"])
             angle = math.radians(me.head + direction)
@@ -222,6 +225,19 @@ class Belief:
         me.sigma += SELF_SIGMA_GROWTH
         me.sigma_head += 1.0
         self._roll_on()
+
+    def _apply_executed(self) -> None:
+        me = self.me
+        for kind, (count, sent_at, effect) in list(self.pending.items()):
+            now = self.counters.get(kind)
+            if count is None or now is None or now > count:  # executed (or no counter to tell)
+                del self.pending[kind]
+                if kind == "turn":
+                    me.body = norm_deg(me.body + effect[0])
+                else:  # move
+                    me.x, me.y, me.vx, me.vy = effect[0], effect[1], 0.0, 0.0
+            elif self.sense_time > sent_at + 1:  # two sense_bodies without it: the server dropped it
+                del self.pending[kind]
 
     def _roll_on(self) -> None:
         """Carry the ball one cycle on (it decays) and grow every estimate's uncertainty."""
@@ -274,15 +290,21 @@ class Belief:
                 self.anonymous.append((team, track))
 
     def sent(self, msg: list) -> None:
-        """Take a command we sent (parsed) into account: what a turn or a move will do to our pose."""
+        """Take a command we sent (parsed) into account: what a turn or a move will do to our pose.
+
+        It takes effect at the sense_body whose counter shows that the server executed it.
+        """
         kind = str(msg[0]) if msg else ""
         me = self.me
         if kind == "turn" and len(msg) >= 2:
             inertia = float(self.param("inertia_moment", 5.0))
-            self.pending_turn = float(msg[1]) / (1.0 + inertia * math.hypot(me.vx, me.vy))
+            effect: tuple[float, ...] = (float(msg[1]) / (1.0 + inertia * math.hypot(me.vx, me.vy)),)
         elif kind == "move" and len(msg) >= 3:
             sign = -1 if self.side is Side.RIGHT else 1  # the server mirrors a right player's move
-            me.x, me.y, me.vx, me.vy = float(msg[1]) * sign, float(msg[2]) * sign, 0.0, 0.0
+            effect = (float(msg[1]) * sign, float(msg[2]) * sign)
+        else:
+            return
+        self.pending[kind] = (self.counters.get(kind), self.sense_time, effect)
 
     # ---- what others read -----------------------------------------------------
 

@@ -31,6 +31,8 @@ from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 
 from cf_commag.client import Agent, Refuse, Responder, init, own_launch_command, spin
+from cf_commag.given_parameters import node_name as safe_node_name
+from cf_commag.given_parameters import parameters_for
 from cf_lang import Exec, parse_expr
 from cf_lang.acl import AclMessage
 from cf_lang.ontology import Team
@@ -62,8 +64,13 @@ PARAMS = {
 class RcssPlayerNode(Node):
     """A player on rcssserver. Parameters: PARAMS."""
 
-    def __init__(self, **kwargs):
-        super().__init__("rcss_player", **kwargs)
+    def __init__(self, node_name: str | None = None, **kwargs):
+        if node_name is None:  # the shirt number is the server's to give: known only on a relaunch
+            p = parameters_for({n: d for n, (d, _) in PARAMS.items()}, kwargs)
+            node_name = safe_node_name(
+                f"{p['team']}_{p['number']}_rcss_player" if p["number"] else f"{p['team']}_rcss_player_{os.getpid()}"
+            )
+        super().__init__(node_name, **kwargs)
         for name, (default, description) in PARAMS.items():
             self.declare_parameter(name, default, ParameterDescriptor(description=description))
         self.p = {name: self.get_parameter(name).value for name in PARAMS}

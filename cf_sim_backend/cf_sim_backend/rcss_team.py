@@ -25,8 +25,10 @@ import rclpy
 from ament_index_python.packages import get_package_prefix
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.signals import SignalHandlerOptions
+from rclpy.utilities import remove_ros_args
 
 from cf_commag.client import SNAPSHOT_QOS
+from cf_commag.given_parameters import node_name as safe_node_name
 from cf_interfaces.msg import Registry
 
 
@@ -103,13 +105,13 @@ class Team:
             argv = [executable("cf_sim_backend", "rcss_player"), *ros, f"team:={a.team}", "-p", f"host:={a.host}"]
             argv += ["-p", f"port:={a.port}", "-p", f"commag:={a.commag}", "-p", f"goalie:={str(n == 1).lower()}"]
             argv += ["-p", f"lease:={a.lease}", "-p", f"synch_wait:={a.synch_wait}"]
+            argv += ["-r", f"__node:={safe_node_name(f'{a.team}_{n}_rcss_player')}"]  # the server gives n in order
             self.start(f"{a.team}_{n}_rcss_player", argv + stats)
             self.wait_for(f"{a.team}_{n}_perception", f"{a.team}_{n}_rcss_player", a.join_timeout)
             print(f"player {n} joined", flush=True)
         for n in range(1, a.players + 1):
             argv = [executable("cf_decision", "decision"), *ros, f"team:={a.team}", "-p", f"number:={n}"]
             argv += ["-p", f"team_size:={a.players}", "-p", f"commag:={a.commag}", "-p", f"lease:={a.lease}"]
-            argv += ["-r", f"__node:=decision_{n}"]
             # One after another too: eleven Python processes starting at once starve the running adapters.
             self.start(f"{a.team}_{n}_decision", argv)
             self.wait_for(f"{a.team}_{n}_decision", f"{a.team}_{n}_decision", a.join_timeout)
@@ -145,7 +147,8 @@ class Team:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of ``ros2 run cf_sim_backend rcss_team``."""
-    args = parse_args(sys.argv[1:] if argv is None else argv)
+    # ros2 launch adds --ros-args ...: they are ROS's, not ours.
+    args = parse_args(remove_ros_args(sys.argv)[1:] if argv is None else argv)
     team = Team(args)
 
     def interrupt(signum, frame):

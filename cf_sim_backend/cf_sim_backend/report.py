@@ -94,7 +94,7 @@ def heat_and_path(header: dict, cycles: list[dict]) -> str:
     for c in cycles:
         for event in c.get("events", []):
             kind = event.split()
-            if kind[0] in ("shot", "goal"):
+            if len(kind) == 2 and kind[0] in ("shot", "goal"):  # not "goal kick l"
                 x, y = _px(length, width, c["ball"][0], c["ball"][1])
                 color = COLORS.get(kind[1], "white")
                 shape = (
@@ -162,12 +162,22 @@ def timeline(events: list[dict]) -> str:
     )
 
 
+def scored(cycles: list[dict]) -> list[tuple[int, str]]:
+    """(cycle, side) of every goal: the events ``goal l`` / ``goal r`` (``goal kick l`` is a restart)."""
+    return [
+        (c["t"], kind[1])
+        for c in cycles
+        for kind in map(str.split, c.get("events", []))
+        if kind[:1] == ["goal"] and len(kind) == 2
+    ]
+
+
 def write_report(log_path: Path, events: list[dict] | None, out: Path) -> Path:
     header, cycles, end = read_log(log_path)
     teams = header.get("teams", {"l": "left", "r": "right"})
     score = end.get("score") or (cycles[-1]["score"] if cycles else [0, 0])
     stats = end.get("stats", {})
-    goals = [(c["t"], e) for c in cycles for e in c.get("events", []) if e.startswith("goal")]
+    goals = scored(cycles)
 
     def stat_row(label: str, key: str, percent: bool = False) -> str:
         values = stats.get(key, {})
@@ -182,7 +192,7 @@ figcaption{{color:#555;font-size:14px}} .score{{font-size:32px;font-weight:bold}
 <h1>Match report</h1>
 <p class="score"><span style="color:{COLORS["l"]}">{html.escape(teams.get("l", "left"))}</span> {score[0]} : {score[1]}
 <span style="color:{COLORS["r"]}">{html.escape(teams.get("r", "right"))}</span></p>
-<p>{len(cycles)} cycles logged. Goals: {", ".join(f"{e.split()[1]} at cycle {t}" for t, e in goals) or "none"}.</p>
+<p>{len(cycles)} cycles logged. Goals: {", ".join(f"{html.escape(teams.get(side, side))} at cycle {t}" for t, side in goals) or "none"}.</p>
 <table><tr><th></th><th>{html.escape(teams.get("l", "left"))}</th><th>{html.escape(teams.get("r", "right"))}</th></tr>
 {stat_row("kicks", "kicks")}{stat_row("shots", "shots")}{stat_row("possession", "possession", True)}</table>
 {heat_and_path(header, cycles)}

@@ -174,8 +174,30 @@ def test_commands_are_mirrored_into_the_servers_frame():
 
 def test_a_move_before_kick_off_places_a_right_player_in_its_own_half():
     b = _belief("r", 4)
+    b.update(parse("(sense_body 0 (speed 0 0) (head_angle 0) (move 0))"))
     b.sent(parse("(move -20 5)"))
+    b.update(parse("(sense_body 1 (speed 0 0) (head_angle 0) (move 1))"))  # the server executed it
     assert (b.me.x, b.me.y) == (20.0, -5.0)  # the server mirrors the right team's move
+
+
+def test_turns_and_moves_count_only_once_the_server_executed_them():
+    b = _belief()
+    b.update(parse("(sense_body 3 (speed 0 0) (head_angle 0) (turn 2) (move 1))"))
+    body = b.me.body
+    b.sent(parse("(turn 40)"))
+    b.update(parse("(sense_body 4 (speed 0 0) (head_angle 0) (turn 2) (move 1))"))  # late: not executed yet
+    assert b.me.body == body
+    b.update(parse("(sense_body 5 (speed 0 0) (head_angle 0) (turn 3) (move 1))"))  # executed a cycle later
+    assert b.me.body == pytest.approx(body + 40.0)
+    b.sent(parse("(turn 40)"))
+    for t in (6, 7, 8):  # never executed (a replay, or lost): dropped, never applied later
+        b.update(parse(f"(sense_body {t} (speed 0 0) (head_angle 0) (turn 3) (move 1))"))
+    b.update(parse("(sense_body 9 (speed 0 0) (head_angle 0) (turn 4) (move 1))"))  # someone else's turn
+    assert b.me.body == pytest.approx(body + 40.0) and not b.pending
+    x = b.me.x
+    b.sent(parse("(move -20 5)"))
+    b.update(parse("(sense_body 10 (speed 0 0) (head_angle 0) (turn 4) (move 1))"))
+    assert b.me.x == x
 
 
 class TwoBodyCommands(Skill):

@@ -17,7 +17,7 @@ import pytest
 
 from cf_sim_backend.chaser import chase_commands
 from cf_sim_backend.matchlog import MatchLog
-from cf_sim_backend.report import write_report
+from cf_sim_backend.report import read_log, scored, write_report
 from cf_sim_backend.sim import Simulator
 from cf_sim_backend.world import Params, Side
 
@@ -49,6 +49,31 @@ def test_report_holds_score_pictures_and_timeline(report: Path):
     assert text.count("<svg") == 3  # ball heat map and path, trajectories, registry timeline
     assert "blue_1_action: suspect" in text and "polyline" in text
     assert "possession" in text and "Goals:" in text
+
+
+def test_report_goals_equal_the_score_and_goal_kicks_are_no_goals(tmp_path: Path):
+    """A goal kick (``goal kick l``, what the referee logs) is a restart, not a goal."""
+    sim = Simulator(
+        Params(half_cycles=300, auto_kick_off_cycles=2), team_sizes=(3, 3), team_names=("blue", "red"), seed=4
+    )
+    log = MatchLog(tmp_path / "match.jsonl", sim, 0.1)
+    while not sim.finished:
+        chase_commands(sim, Side.LEFT)
+        chase_commands(sim, Side.RIGHT)
+        events = sim.step()
+        if sim.world.time in (100, 400):  # chasers never send the ball out over a goal line: add two
+            events = [*events, f"goal kick {'l' if sim.world.time == 100 else 'r'}"]
+        log.cycle(sim.snapshot(), events)
+    log.close()
+    _, cycles, end = read_log(tmp_path / "match.jsonl")
+    goals = scored(cycles)
+    assert len(goals) == sum(end["score"]) == 3
+    assert [side for _, side in goals].count("l") == end["score"][0]
+    text = write_report(tmp_path / "match.jsonl", [], tmp_path / "report.html").read_text()
+    listed = text.split("Goals: ")[1].split(".</p>")[0]
+    assert listed.count(" at cycle ") == 3 and "kick" not in listed, listed
+    assert listed.count("blue at cycle") == end["score"][0]
+    assert text.count('r="7"') == 3  # one large circle per goal on the ball picture
 
 
 def _png_colours(png: bytes) -> int:

@@ -1,0 +1,95 @@
+"""Which decision goes out as a request, and what its answer means (ROS-free).
+
+The action component runs one request at a time: a newer request replaces the
+current one, and the replaced one is answered ``failure``. So an answer only
+matters when it belongs to the request in force; and a decision that is the
+same as the one in force (within the tolerances of :func:`same_action`) is not
+sent again while that request runs.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from pydantic import BaseModel
+
+from cf_lang.ontology import AbsolutePositioning
+
+POSITION_TOLERANCE = 1.0  # m: targets closer than this are one target (a player is ~0.6 m wide)
+ANGLE_TOLERANCE = 0.1  # rad (about 6 degrees)
+SCALAR_TOLERANCE = 5.0  # power and speed, on their 0..100 scale
+_ANGLES = {"angle", "direction", "yaw"}
+
+
+def _same_value(name: str, a: object, b: object) -> bool:
+    if isinstance(a, AbsolutePositioning) and isinstance(b, AbsolutePositioning):
+        return math.hypot(a.x - b.x, a.y - b.y) <= POSITION_TOLERANCE and _same_value("yaw", a.yaw, b.yaw)
+    if isinstance(a, BaseModel) and isinstance(b, BaseModel):
+        return same_action(a, b)
+    if isinstance(a, float | int) and isinstance(b, float | int) and not isinstance(a, bool | type(None)):
+        if name in _ANGLES:
+            diff = (a - b + math.pi) % (2 * math.pi) - math.pi
+            return abs(diff) <= ANGLE_TOLERANCE
+        return abs(a - b) <= SCALAR_TOLERANCE
+    return a == b
+
+
+def same_action(a: BaseModel, b: BaseModel) -> bool:
+    """Whether two ontology actions ask for the same thing, within the tolerances above."""
+    if type(a) is not type(b):
+        return False
+    return all(_same_value(name, getattr(a, name), getattr(b, name)) for name in type(a).model_fields)
+
+
+@dataclass
+class RequestStats:
+    cycles: int = 0  # decisions taken
+    requests: int = 0  # requests sent
+    resends: int = 0  # requests for the same action as the one before (its request had ended)
+    done: int = 0
+    failed: int = 0  # the request in force failed or was refused
+    replaced: int = 0  # answers to requests we had replaced already (ignored)
+
+    def line(self) -> str:
+        per = self.requests / max(1, self.cycles)
+        return (
+            f"{self.cycles} cycles, {self.requests} requests ({per:.2f} per cycle), {self.resends} re-sends,"
+            f" {self.done} done, {self.failed} failed, {self.replaced} answers to replaced requests"
+        )
+
+
+@dataclass
+class ActionRequests:
+    """The request in force for one player, and the rule for sending the next."""
+
+    current: tuple[str, BaseModel] | None = None  # (method, action) of the request in force
+    token: object = None  # what identifies the request in force (the runtime's future)
+    running: bool = False
+    last_sent: tuple[str, BaseModel] | None = None
+    stats: RequestStats = field(default_factory=RequestStats)
+
+    def wants(self, method: str, action: BaseModel) -> bool:
+        """Whether this cycle's decision must go out as a request."""
+        self.stats.cycles += 1
+        if not self.running or self.current is None:
+            return True
+        return not (method == self.current[0] and same_action(action, self.current[1]))
+
+    def sent(self, method: str, action: BaseModel, token: object) -> None:
+        if self.last_sent is not None and method == self.last_sent[0] and same_action(action, self.last_sent[1]):
+            self.stats.resends += 1
+        self.current = self.last_sent = (method, action)
+        self.token, self.running = token, True
+        self.stats.requests += 1
+
+    def answered(self, token: object, ok: bool) -> None:
+        """The final answer to a request; one to a request we replaced since is ignored."""
+        if token is not self.token:
+            self.stats.replaced += 1
+            return
+        self.running = False
+        if ok:
+            self.stats.done += 1
+        else:
+            self.stats.failed += 1

@@ -1,0 +1,49 @@
+"""When a decision goes out as a request, and what its answer means."""
+
+from __future__ import annotations
+
+from cf_decision.requests import ActionRequests, same_action
+from cf_lang.ontology import AbsolutePositioning, Ball
+from cf_lang.ontology import actions as act
+
+
+def move(x, y, speed=70.0):
+    return act.MoveTo(target=AbsolutePositioning(x=x, y=y), speed=speed)
+
+
+def test_same_action_within_tolerances():
+    assert same_action(move(10.0, 5.0), move(10.4, 5.3))
+    assert not same_action(move(10.0, 5.0), move(11.5, 5.0))
+    assert not same_action(move(10.0, 5.0), move(10.0, 5.0, speed=100.0))
+    assert same_action(act.Turn(angle=3.1), act.Turn(angle=-3.1))  # the same way round the circle
+    assert not same_action(act.Turn(angle=0.0), act.Turn(angle=0.3))
+    assert same_action(
+        act.Dribble(target=AbsolutePositioning(x=1, y=1), speed=70),
+        act.Dribble(target=AbsolutePositioning(x=1.2, y=0.9), speed=72),
+    )
+    assert not same_action(act.Intercept(), act.TurnToObject(obj=Ball()))
+    assert same_action(act.TurnToObject(obj=Ball()), act.TurnToObject(obj=Ball()))
+
+
+def test_the_failure_of_a_replaced_request_does_not_resend_the_current_one():
+    tracker = ActionRequests()
+    first, second = object(), object()
+    assert tracker.wants("moveTo", move(0, 0))
+    tracker.sent("moveTo", move(0, 0), first)
+    assert tracker.wants("moveTo", move(20, 0))  # changed: replaces the first
+    tracker.sent("moveTo", move(20, 0), second)
+    tracker.answered(first, ok=False)  # "replaced by a newer request"
+    assert not tracker.wants("moveTo", move(20.3, 0.2))  # the second still runs
+    assert tracker.stats.replaced == 1 and tracker.stats.failed == 0 and tracker.stats.requests == 2
+
+
+def test_an_unchanged_decision_is_sent_again_only_after_its_request_ended():
+    tracker = ActionRequests()
+    token = object()
+    tracker.sent("turn", act.Turn(angle=1.0), token)
+    assert not tracker.wants("turn", act.Turn(angle=1.0))
+    tracker.answered(token, ok=False)  # the request in force failed: try again
+    assert tracker.wants("turn", act.Turn(angle=1.0))
+    tracker.sent("turn", act.Turn(angle=1.0), object())
+    assert tracker.stats.resends == 1 and tracker.stats.failed == 1 and tracker.stats.cycles == 2
+    assert "1.00 per cycle" in tracker.stats.line()
