@@ -55,6 +55,7 @@ class Demo:
         self.events: list[dict] = []
         self.counts: Counter[str] = Counter()
         self.messages = 0
+        self.requests = 0  # fipa-request openings: the decisions asking their action components
         self.inboxes: dict[str, object] = {}
         self.last_state: dict | None = None
 
@@ -111,7 +112,9 @@ class Demo:
                 )
 
     def _count(self, msg: String) -> None:
-        self.messages += len(sample_messages(msg.data))  # a sample may carry several
+        texts = sample_messages(msg.data)  # a sample may carry several
+        self.messages += len(texts)
+        self.requests += sum(t.startswith("(request") for t in texts)
 
     def on_state(self, msg: String) -> None:
         snap = json.loads(msg.data)
@@ -243,6 +246,8 @@ class Demo:
         print(f"relaunches   {self.counts['relaunched']}  (launch attempts {self.counts['relaunching']})")
         print(f"withdrawals  {self.counts['withdrawn']}")
         print(f"ACL messages exchanged  {self.messages}")
+        played = max(1, (self.last_state or {}).get("t", 0) * 2 * self.args.players)
+        print(f"action requests  {self.requests}  ({self.requests / played:.2f} per player-cycle)")
         print(f"report       {report}")
         print(f"match log    {self.out / 'match.jsonl'}  (format: docs/simulator.md)")
         print("=================================================")

@@ -132,6 +132,9 @@ class Directory:
         self._entries: dict[str, Entry] = {}
         self._names: dict[str, list[str]] = {}  # class -> sorted names
         self._by_owner: dict[tuple[str, int], set[str]] = {}  # (team, player) -> names
+        # name -> (class, owner) it is indexed under: an entry's record may be replaced before
+        # it is put again, so the old keys are remembered here, not read from the entry.
+        self._keys: dict[str, tuple[str, tuple[str, int]]] = {}
 
     def __len__(self) -> int:
         return len(self._entries)
@@ -146,25 +149,47 @@ class Directory:
         return list(self._entries.values())
 
     def put(self, entry: Entry) -> None:
-        old = self._entries.get(entry.name)
-        if old is not None:
-            self._unindex(old)
+        """Add an entry, or index it anew after its record changed (class, team or player)."""
+        self._unindex(entry.name)
         self._entries[entry.name] = entry
-        bisect.insort(self._names.setdefault(entry.record.service_class, []), entry.name)
-        self._by_owner.setdefault((entry.record.team, entry.record.player_number), set()).add(entry.name)
+        cls, owner = entry.record.service_class, (entry.record.team, entry.record.player_number)
+        bisect.insort(self._names.setdefault(cls, []), entry.name)
+        self._by_owner.setdefault(owner, set()).add(entry.name)
+        self._keys[entry.name] = (cls, owner)
 
     def remove(self, name: str) -> Entry | None:
         entry = self._entries.pop(name, None)
-        if entry is not None:
-            self._unindex(entry)
+        self._unindex(name)
         return entry
 
-    def _unindex(self, entry: Entry) -> None:
-        names = self._names.get(entry.record.service_class, [])
-        i = bisect.bisect_left(names, entry.name)
-        if i < len(names) and names[i] == entry.name:
+    def _unindex(self, name: str) -> None:
+        keys = self._keys.pop(name, None)
+        if keys is None:
+            return
+        cls, owner = keys
+        names = self._names.get(cls, [])
+        i = bisect.bisect_left(names, name)
+        if i < len(names) and names[i] == name:
             del names[i]
-        self._by_owner.get((entry.record.team, entry.record.player_number), set()).discard(entry.name)
+        if not names:
+            self._names.pop(cls, None)
+        owned = self._by_owner.get(owner)
+        if owned is not None:
+            owned.discard(name)
+            if not owned:  # no empty sets left behind by agents that came and went
+                del self._by_owner[owner]
+
+    def check(self) -> None:
+        """Raise AssertionError unless the indexes hold exactly the entries (for tests)."""
+        by_class = {n for names in self._names.values() for n in names}
+        by_owner = {n for names in self._by_owner.values() for n in names}
+        assert by_class == by_owner == set(self._entries) == set(self._keys), "index and entries differ"
+        for name, entry in self._entries.items():
+            cls, owner = self._keys[name]
+            assert (cls, owner) == (entry.record.service_class, (entry.record.team, entry.record.player_number))
+            assert name in self._names[cls] and name in self._by_owner[owner]
+        for names in self._names.values():
+            assert names == sorted(names) and names
 
     def search(self, query: Query) -> list[tuple[Entry, int]]:
         """Matching entries with their taxonomy distance, best first.
