@@ -48,6 +48,7 @@ from cf_lang.protocols import Conversation, ConversationTable
 from cf_lang.taxonomy import Direction
 
 from .convert import directory_from_msg
+from .guarded import GuardedNode, guard
 from .records import Directory, Entry, Query, valid_agent_name
 from .registry import INCARNATION_KEY, SUPERSEDED
 from .samples import pack_counted, pack_lines, sample_messages
@@ -374,19 +375,23 @@ class Agent:
         self._pending_since = 0.0
         self._closed = False
 
+        def guarded(callback):  # a GuardedNode guards what it creates; a plain node does not
+            return callback if isinstance(node, GuardedNode) else guard(callback, self._log, callback.__qualname__)
+
         # Taken serialized (see string_cdr): no message object built per sample.
-        self._inbox = node.create_subscription(String, inbox_topic(name), self._on_inbox, INBOX_QOS, raw=True)
+        self._inbox = node.create_subscription(String, inbox_topic(name), guarded(self._on_inbox), INBOX_QOS, raw=True)
         self._register_client = node.create_client(Register, f"{commag}/register")
         self._deregister_client = node.create_client(Deregister, f"{commag}/deregister")
         self._lookup_client = node.create_client(Lookup, f"{commag}/lookup")
         self._snapshot_sub = node.create_subscription(
-            RegistryMsg, f"{commag}/registry", self._on_snapshot, SNAPSHOT_QOS
+            RegistryMsg, f"{commag}/registry", guarded(self._on_snapshot), SNAPSHOT_QOS
         )
-        self._timers = [node.create_timer(0.1, self._on_expire_timer)]  # deadlines to 0.1 s; idle cost stays low
+        # Deadlines to 0.1 s; the idle cost stays low.
+        self._timers = [node.create_timer(0.1, guarded(self._on_expire_timer))]
         if register:
             # Three renewals per lease: one late or lost renewal is not a missed lease.
-            self._timers.append(node.create_timer(max(0.02, lease / 3.0), self._renew))
-            self._first = node.create_timer(0.05, self._register_first)
+            self._timers.append(node.create_timer(max(0.02, lease / 3.0), guarded(self._renew)))
+            self._first = node.create_timer(0.05, guarded(self._register_first))
             self._timers.append(self._first)
 
     # ---- registration ------------------------------------------------------
@@ -410,7 +415,7 @@ class Agent:
             return
         self._pending_since = now
         self._pending_register = self._register_client.call_async(Register.Request(component=self.record))
-        self._pending_register.add_done_callback(self._on_registered)
+        self._pending_register.add_done_callback(guard(self._on_registered, self._log, "registration"))
 
     def _on_registered(self, future: Future) -> None:
         if future.cancelled() or future.exception() is not None:

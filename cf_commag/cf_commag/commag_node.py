@@ -21,6 +21,7 @@ from cf_interfaces.srv import Deregister, Lookup, Register
 
 from . import store
 from .convert import event_to_msg, to_msg, to_query, to_record
+from .guarded import GuardedNode
 from .launcher import Launcher, LaunchPolicy, workspace_roots
 from .records import EventKind, State
 from .registry import Event, Registry, RegistryConfig
@@ -72,7 +73,7 @@ class CommagConfig(BaseModel):
     stop_launched_on_exit: bool = Field(False, description="kill the processes it launched when it exits")
 
 
-class CommagNode(LifecycleNode):
+class CommagNode(GuardedNode, LifecycleNode):
     """The Communication Management Agent (paper, section 3).
 
     Parameters: see CommagConfig (each declared with its description), plus

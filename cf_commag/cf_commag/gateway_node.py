@@ -23,6 +23,7 @@ from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic, make_executor,
 from .commag_node import EVENTS_QOS
 from .convert import directory_from_msg, entry_from_msg, query_to_request, to_msg
 from .gateway import Gateway, GatewayConfig, form
+from .guarded import GuardedNode
 from .records import Entry, Query, Record
 from .registry import Result
 
@@ -43,7 +44,7 @@ _PARAMS = {
 }
 
 
-class GatewayNode(Node):
+class GatewayNode(GuardedNode, Node):
     """TCP socket gateway: makes TCP agents full members of the framework.
 
     Parameters: see _PARAMS (each declared with its description).

@@ -25,6 +25,7 @@ from rclpy.node import Node
 
 from cf_commag.client import Agent, own_launch_command, run
 from cf_commag.given_parameters import parameters_for
+from cf_commag.guarded import GuardedNode, guard
 from cf_lang import Exec, LanguageError, parse_expr
 from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.expr import to_sexp
@@ -50,7 +51,7 @@ def _agent_name(p: dict) -> str:
     return p["name"] or f"{p['team']}_{p['number']}_decision{'_standby' if p['standby'] else ''}"
 
 
-class DecisionNode(Node):
+class DecisionNode(GuardedNode, Node):
     """Decision of one player (service class PlayerDecision). Parameters: _PARAMS."""
 
     def __init__(self, node_name: str | None = None, **kwargs):
@@ -136,7 +137,7 @@ class DecisionNode(Node):
         content = dumps(to_sexp(expr))
         future = self.agent.request(provider, content, timeout=3.0)
         self.requests.sent(decision.method, decision.action, future)
-        future.add_done_callback(self._on_answer)
+        future.add_done_callback(guard(self._on_answer, self.get_logger(), "the answer to a request"))
 
     def _on_answer(self, future) -> None:
         # A request we replaced is answered failure by the action component: that says nothing

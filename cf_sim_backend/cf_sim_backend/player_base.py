@@ -10,6 +10,7 @@ from std_msgs.msg import String
 
 from cf_commag.client import Agent, own_launch_command
 from cf_commag.given_parameters import parameters_for
+from cf_commag.guarded import GuardedNode
 
 from .topics import STATE_QOS, state_topic
 from .world import Side, World, world_from_snapshot
@@ -27,7 +28,7 @@ PLAYER_PARAMS = {
 }
 
 
-class PlayerComponentNode(Node):
+class PlayerComponentNode(GuardedNode, Node):
     """A node for one player's component; subclasses set ROLE, SERVICE_CLASS and handle states."""
 
     ROLE = "component"

@@ -33,6 +33,7 @@ from rclpy.node import Node
 from cf_commag.client import Agent, Refuse, Responder, init, own_launch_command, spin
 from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.given_parameters import parameters_for
+from cf_commag.guarded import GuardedNode
 from cf_lang import Exec, parse_expr
 from cf_lang.acl import AclMessage
 from cf_lang.ontology import Team
@@ -61,7 +62,7 @@ PARAMS = {
 }
 
 
-class RcssPlayerNode(Node):
+class RcssPlayerNode(GuardedNode, Node):
     """A player on rcssserver. Parameters: PARAMS."""
 
     def __init__(self, node_name: str | None = None, **kwargs):

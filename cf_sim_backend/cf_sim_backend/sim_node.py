@@ -13,6 +13,7 @@ from rclpy.node import Node
 from std_msgs.msg import String
 
 from cf_commag.client import Agent, init, own_launch_command, spin
+from cf_commag.guarded import GuardedNode
 
 from .matchlog import MatchLog
 from .physics import CommandError
@@ -43,7 +44,7 @@ _PARAMS = {
 }
 
 
-class SimNode(Node):
+class SimNode(GuardedNode, Node):
     """Runs the embedded simulator (parameters in _PARAMS, each declared with a description)."""
 
     def __init__(self, **kwargs):
