@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import asyncio
 import hmac
+import math
 import socket
 import threading
 import time
@@ -23,7 +24,7 @@ from cf_lang.acl import AgentId
 from cf_lang.sexp import Keyword, Limits, Symbol, loads
 from cf_lang.taxonomy import Direction
 
-from .records import Entry, Query, Record, Transport, valid_agent_name
+from .records import Entry, Query, Record, Transport, query_field_problem, record_field_problem, valid_agent_name
 from .registry import Result
 from .samples import pack_lines
 
@@ -86,6 +87,23 @@ def _pairs(items: list) -> dict[str, object]:
             raise ValueError(f"expected a :key, found {dumps(items[i])}")
         out[items[i].name] = items[i + 1]
     return out
+
+
+def _param(params: dict, key: str, kind: type, default):
+    """Parameter ``:key`` read as ``kind`` (str, int, float or bool); ValueError saying why not."""
+    if key not in params:
+        return default
+    value = params[key]
+    if kind is str and isinstance(value, str):
+        return str(value)
+    if kind is bool and isinstance(value, str) and value.lower() in ("true", "false"):
+        return value.lower() == "true"
+    if kind is int and type(value) is int:
+        return value
+    if kind is float and type(value) in (int, float) and math.isfinite(value):
+        return float(value)
+    wanted = {str: "a string", int: "an integer", float: "a finite number", bool: "true or false"}[kind]
+    raise ValueError(f"bad parameter :{key}: expected {wanted}, found {dumps(value)[:40]}")
 
 
 def entry_form(entry: Entry) -> list:
@@ -210,21 +228,24 @@ class Session:
             self.send(form("failure", in_reply_to="register", reason="TCP agents cannot register a launch command"))
             return True
         try:
-            lease = float(params.get("lease", self.gateway.config.default_lease))
             record = Record(
                 name=self.name,
-                service_class=str(params.get("service-class", "")),
-                address=str(params.get("address", self.peer[0])),
-                port=int(params.get("port", self.peer[1])),
-                lease_period=lease,
-                team=str(params.get("team", "")),
-                player_number=int(params.get("player", 0)),
+                service_class=_param(params, "service-class", str, ""),
+                address=_param(params, "address", str, self.peer[0]),
+                port=_param(params, "port", int, self.peer[1]),
+                lease_period=_param(params, "lease", float, self.gateway.config.default_lease),
+                team=_param(params, "team", str, ""),
+                player_number=_param(params, "player", int, 0),
                 transport=Transport.TCP,
                 languages=("cf-lang",),
                 ontologies=("robocup-soccer",),
             )
-        except (TypeError, ValueError) as exc:
-            self.send(form("failure", in_reply_to="register", reason=f"bad parameter: {exc}"))
+        except ValueError as exc:
+            self.send(form("failure", in_reply_to="register", reason=str(exc)))
+            return True
+        problem = record_field_problem(record)  # what a ROS message could not carry
+        if problem:
+            self.send(form("failure", in_reply_to="register", reason=f"bad parameter: {problem}"))
             return True
         result = await self.gateway.bus.register(record)
         if not result.accepted:
@@ -236,22 +257,22 @@ class Session:
 
     async def _lookup(self, params: dict) -> bool:
         try:
-            direction = _DIRECTIONS[str(params.get("direction", "general")).lower()]
+            direction = _param(params, "direction", str, "general").lower()
+            if direction not in _DIRECTIONS:
+                raise ValueError(f"bad parameter: direction must be one of {', '.join(_DIRECTIONS)}")
             query = Query(
-                service_class=str(params.get("service-class", "")),
-                direction=direction,
-                team=str(params.get("team", "")),
-                player_number=int(params.get("player", 0)),
-                include_suspect=str(params.get("include-suspect", "false")).lower() == "true",
-                max_results=int(params.get("max", 0)),
+                service_class=_param(params, "service-class", str, ""),
+                direction=_DIRECTIONS[direction],
+                team=_param(params, "team", str, ""),
+                player_number=_param(params, "player", int, 0),
+                include_suspect=_param(params, "include-suspect", bool, False),
+                max_results=_param(params, "max", int, 0),
             )
+            problem = query_field_problem(query)
+            if problem:
+                raise ValueError(f"bad parameter: {problem}")
             entries = await self.gateway.bus.lookup(query)
-        except KeyError:
-            self.send(
-                form("failure", in_reply_to="lookup", reason=f"direction must be one of {', '.join(_DIRECTIONS)}")
-            )
-            return True
-        except (LanguageError, TypeError, ValueError) as exc:
+        except (LanguageError, ValueError) as exc:
             self.send(form("failure", in_reply_to="lookup", reason=str(exc)))
             return True
         self.send(dumps([Symbol("providers"), *[entry_form(e) for e in entries]]))

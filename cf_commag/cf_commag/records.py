@@ -7,6 +7,7 @@ so a lookup gives the same answer wherever it runs.
 from __future__ import annotations
 
 import bisect
+import math
 import re
 from dataclasses import asdict, dataclass, field
 from enum import IntEnum, StrEnum
@@ -253,8 +254,69 @@ def valid_agent_name(name: str) -> bool:
     return isinstance(name, str) and _NAME_RE.fullmatch(name) is not None and "__" not in name
 
 
+MAX_TEXT = 1024  # characters of a name-like string field (team, address, class, metadata)
+_UINT16, _INT16, _UINT32 = (0, 2**16 - 1), (-(2**15), 2**15 - 1), (0, 2**32 - 1)
+
+
+def _text_problem(field: str, value: object, limit: int = MAX_TEXT) -> str | None:
+    """Why ``value`` cannot travel in a ROS ``string`` field, or None."""
+    if not isinstance(value, str):
+        return f"{field} must be a string, not {type(value).__name__}"
+    if len(value) > limit:
+        return f"{field} is longer than {limit} characters"
+    if "\0" in value:
+        return f"{field} must not contain NUL (a ROS string ends at it)"
+    try:
+        value.encode("utf-8")
+    except UnicodeEncodeError:
+        return f"{field} is not valid Unicode (a lone surrogate)"
+    return None
+
+
+def _int_problem(field: str, value: object, bounds: tuple[int, int]) -> str | None:
+    if type(value) is not int:
+        return f"{field} must be an integer, not {type(value).__name__}"
+    if not bounds[0] <= value <= bounds[1]:
+        return f"{field} must be in {bounds[0]}..{bounds[1]}"
+    return None
+
+
+def record_field_problem(record: Record) -> str | None:
+    """Why a record's fields cannot be carried by a ComponentRecord message, or None."""
+    for name in ("name", "address", "service_class", "team"):
+        problem = _text_problem(name, getattr(record, name))
+        if problem:
+            return problem
+    for name, value in (("port", record.port), ("player_number", record.player_number)):
+        problem = _int_problem(name, value, _UINT16 if name == "port" else _INT16)
+        if problem:
+            return problem
+    if type(record.lease_period) not in (int, float) or not math.isfinite(record.lease_period):
+        return "lease_period must be a finite number of seconds"
+    texts = [*record.launch_command, *record.languages, *record.ontologies, *(x for kv in record.metadata for x in kv)]
+    for value in texts:
+        problem = _text_problem("a list item", value, 4096)
+        if problem:
+            return problem
+    return None
+
+
+def query_field_problem(query: Query) -> str | None:
+    """Why a query's fields cannot be carried by a Lookup request, or None."""
+    return (
+        _text_problem("service_class", query.service_class)
+        or _text_problem("team", query.team)
+        or _int_problem("player_number", query.player_number, _INT16)
+        or _int_problem("max_results", query.max_results, _UINT32)
+        or (None if type(query.include_suspect) is bool else "include_suspect must be true or false")
+    )
+
+
 def check_record(record: Record, *, min_lease: float, max_lease: float) -> str | None:
     """Why a record cannot be registered, or None if it can."""
+    problem = record_field_problem(record)
+    if problem:
+        return problem
     if not valid_agent_name(record.name):
         return f"name {record.name!r} must match [A-Za-z][A-Za-z0-9_]* (at most 100 characters): it names a ROS topic"
     try:

@@ -131,6 +131,10 @@ class Registry:
             return Result(True, "registered", lease), [self._event(entry, EventKind.REGISTERED, "registered", now)]
 
         old, new = incarnation(entry.record), incarnation(record)
+        if entry.record != record:  # a renewal may change any field: index it anew
+            entry.record = record
+            self.directory.put(entry)
+            self.changed = True
         if entry.state is State.RELAUNCHING and old and new == old:
             # Only late, not dead: keep it, and stop the process we launched in its place.
             if self._cancel_launch is not None:
@@ -142,10 +146,6 @@ class Registry:
             return Result(True, "renewed", lease), [self._event(entry, EventKind.RENEWED, reason, now)]
         if old and new and old != new:
             _remember(self._superseded, old)
-        if entry.record != record:
-            entry.record = record
-            self.directory.put(entry)
-            self.changed = True
         entry.lease = lease
         entry.last_renewal = now
         previous = entry.state

@@ -29,7 +29,7 @@ class Ros:
         self.executor.add_node(node)
         return node
 
-    def spin_until(self, predicate, timeout: float = 10.0, what: str = "condition") -> None:
+    def spin_until(self, predicate, timeout: float = 30.0, what: str = "condition") -> None:
         deadline = time.monotonic() + timeout
         while not predicate():
             if time.monotonic() > deadline:
