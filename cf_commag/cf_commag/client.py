@@ -29,7 +29,7 @@ import uuid
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
-from rclpy._rclpy_pybind11 import RCLError
+from rclpy._rclpy_pybind11 import InvalidHandle, RCLError
 from rclpy.duration import Duration
 from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.executors import ExternalShutdownException
@@ -148,9 +148,12 @@ class Outbox:
         if pub is not None:
             try:
                 pub.publish(to_cdr(text))
+                return
             except RCLError:
                 self._stall(receiver, [(time.monotonic(), text)])
-            return
+                return
+            except InvalidHandle:  # released by retain() meanwhile: make a new one below
+                pass
         with self._lock:
             pub = self._publishers.get(receiver)
             if pub is None:
@@ -172,6 +175,19 @@ class Outbox:
             # Not matched (yet, or any more: the receiver died and may be relaunched): hold it.
             self._matched.pop(receiver, None)
             self._held.setdefault(receiver, []).append((time.monotonic(), text))
+
+    def retain(self, receivers: set[str] | frozenset[str]) -> None:
+        """Release the publishers of receivers not in ``receivers`` (and with nothing held for them).
+
+        A gateway relays to whoever registers; without this, every agent that ever came and
+        went would keep a publisher (and its DDS writer) in the gateway for ever.
+        """
+        with self._lock:
+            gone = [r for r in self._publishers if r not in receivers and r not in self._held]
+            for receiver in gone:
+                self._matched.pop(receiver, None)
+                self._stalled.pop(receiver, None)
+                self._node.destroy_publisher(self._publishers.pop(receiver))
 
     def _stall(self, receiver: str, messages: list[tuple[float, str]]) -> None:
         with self._lock:

@@ -63,6 +63,11 @@ class CommagConfig(BaseModel):
     backoff_initial: float = Field(0.5, ge=0, description="delay (s) after the first failed launch; doubles each time")
     backoff_max: float = Field(8.0, ge=0, description="cap (s) on the delay between launch attempts")
     stable_period: float = Field(30.0, ge=0, description="seconds healthy before the failure count resets")
+    forget_after: float = Field(
+        60.0,
+        ge=0,
+        description="seconds after which a withdrawn component without launch command is forgotten (0: never)",
+    )
     tick_period: float = Field(0.05, gt=0, le=1.0, description="how often (s) leases are checked")
     allowed_roots: tuple[str, ...] = Field((), description="directories whose executables may be launched")
     allowed_commands: tuple[str, ...] = Field((), description="further executables (absolute paths) allowed")
@@ -135,6 +140,7 @@ class CommagNode(GuardedNode, LifecycleNode):
                 backoff_initial=cfg.backoff_initial,
                 backoff_max=cfg.backoff_max,
                 stable_period=cfg.stable_period,
+                forget_after=cfg.forget_after,
             ),
             launch=lambda record: self._launcher.launch(record.name, record.launch_command),
             check_launch=policy.check,

@@ -100,8 +100,13 @@ def _param(params: dict, key: str, kind: type, default):
         return value.lower() == "true"
     if kind is int and type(value) is int:
         return value
-    if kind is float and type(value) in (int, float) and math.isfinite(value):
-        return float(value)
+    if kind is float and type(value) in (int, float):
+        try:
+            number = float(value)
+        except OverflowError:  # an integer of hundreds of digits
+            number = math.inf
+        if math.isfinite(number):
+            return number
     wanted = {str: "a string", int: "an integer", float: "a finite number", bool: "true or false"}[kind]
     raise ValueError(f"bad parameter :{key}: expected {wanted}, found {dumps(value)[:40]}")
 

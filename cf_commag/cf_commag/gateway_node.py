@@ -191,6 +191,7 @@ class GatewayNode(GuardedNode, Node):
         # Asked once per relayed message: a set, made once per snapshot.
         entries = directory_from_msg(msg).entries()
         self._known = frozenset(e.name for e in entries if e.state.value != "withdrawn")
+        self._outbox.retain(self._known)  # publishers to agents that are gone are released
 
     def _on_event(self, ev: RegistryEvent) -> None:
         if not self._watchers:

@@ -92,6 +92,7 @@ class Entry:
     next_attempt_at: float = 0.0
     launch_started_at: float = 0.0
     healthy_since: float = 0.0
+    state_since: float = 0.0  # when it entered its current state
     history: list[tuple[float, str]] = field(default_factory=list)
 
     @property

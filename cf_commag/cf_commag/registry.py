@@ -58,6 +58,10 @@ class RegistryConfig:
     max_failures: int = 3
     backoff_initial: float = 0.5
     backoff_max: float = 8.0
+    # A withdrawn component without a launch command cannot come back but by registering again:
+    # forget it after this many seconds (0: never), so that agents that vanish (TCP clients,
+    # above all) do not make every tick, save and registry snapshot bigger for ever.
+    forget_after: float = 60.0
     stable_period: float = 30.0
     max_components: int = 100_000
 
@@ -125,7 +129,7 @@ class Registry:
         if entry is None:
             if len(self.directory) >= cfg.max_components:
                 return Result(False, f"registry full ({cfg.max_components} components)"), []
-            entry = Entry(record=record, lease=lease, last_renewal=now, healthy_since=now)
+            entry = Entry(record=record, lease=lease, last_renewal=now, healthy_since=now, state_since=now)
             self.directory.put(entry)
             self.changed = True
             return Result(True, "registered", lease), [self._event(entry, EventKind.REGISTERED, "registered", now)]
@@ -197,8 +201,16 @@ class Registry:
     def tick(self, now: float) -> list[Event]:
         """Advance every component's state to time ``now``."""
         events: list[Event] = []
+        forget = self.config.forget_after
         for entry in self.directory.entries():
             state = entry.state
+            if state is State.WITHDRAWN:
+                if forget and not entry.record.launch_command and now - entry.state_since > forget:
+                    self.directory.remove(entry.name)
+                    self.changed = True
+                    reason = f"forgotten: withdrawn {now - entry.state_since:.0f} s ago, no launch command"
+                    events.append(self._event(entry, EventKind.DEREGISTERED, reason, now))
+                continue
             if state is State.HEALTHY:
                 silent = now - entry.last_renewal
                 if silent > entry.lease:
@@ -258,6 +270,7 @@ class Registry:
     def _set(self, entry: Entry, state: State, now: float) -> None:
         if entry.state is not state:
             entry.state = state
+            entry.state_since = now
             self.changed = True
 
     def _event(self, entry: Entry, kind: EventKind, reason: str, now: float, *, log: bool = True) -> Event:
@@ -296,6 +309,7 @@ class Registry:
                 failures=int(item.get("failures", 0)),
                 next_attempt_at=now + self.config.startup_grace,
                 healthy_since=now,
+                state_since=now,
             )
             self.directory.put(entry)
             count += 1

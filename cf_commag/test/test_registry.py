@@ -242,3 +242,18 @@ def test_a_stall_of_the_commag_itself_costs_nobody_its_lease(reg):
     result, _ = reg.register(rec("blue_7_kick", lease_period=1.0), now=2.51)  # the queued renewal, read now
     assert result.reason == "renewed"
     assert kinds(reg.tick(3.6)) == [EventKind.SUSPECT, EventKind.RELAUNCHING]  # really silent now
+
+
+def test_a_withdrawn_component_without_launch_command_is_forgotten_after_a_while():
+    """Agents that vanish (TCP clients) must not make every tick, save and snapshot bigger for ever."""
+    registry = Registry(RegistryConfig(default_lease=1.0, max_failures=1, forget_after=10.0))
+    registry.register(Record(name="gone", service_class="Kick"), now=0.0)
+    registry.register(Record(name="kept", service_class="Kick", launch_command=("/bin/false",)), now=0.0)
+    events = [e for t in range(0, 40) for e in registry.tick(float(t))]
+    withdrawn = next(e for e in events if e.record.name == "gone" and e.kind is EventKind.WITHDRAWN)
+    forgotten = [e for e in events if e.record.name == "gone" and e.kind is EventKind.DEREGISTERED]
+    assert len(forgotten) == 1 and forgotten[0].at - withdrawn.at > 10.0 and "forgotten" in forgotten[0].reason
+    assert "gone" not in registry.directory and registry.directory.get("kept") is not None
+    registry.directory.check()
+    # It may come back by registering again.
+    assert registry.register(Record(name="gone", service_class="Kick"), now=41.0)[0].accepted
