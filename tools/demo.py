@@ -30,8 +30,8 @@ from ament_index_python.packages import get_package_prefix
 from rclpy.executors import SingleThreadedExecutor
 from std_msgs.msg import String
 
-from cf_commag.client import INBOX_QOS, SNAPSHOT_QOS, inbox_topic
-from cf_commag.commag_node import EVENTS_QOS
+from cf_commag.client import inbox_topic
+from cf_commag.qos import EVENTS_QOS, INBOX_QOS, SNAPSHOT_QOS
 from cf_commag.samples import sample_messages
 from cf_interfaces.msg import Registry, RegistryEvent
 from cf_sim_backend.report import write_report

@@ -34,7 +34,6 @@ from rclpy.duration import Duration
 from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.serialization import deserialize_message
 from rclpy.task import Future
 from std_msgs.msg import String
@@ -49,22 +48,11 @@ from cf_lang.taxonomy import Direction
 
 from .convert import directory_from_msg
 from .guarded import GuardedNode, guard
+from .qos import INBOX_QOS, SERVICE_QOS, SNAPSHOT_QOS
 from .records import Directory, Entry, Query, valid_agent_name
 from .registry import INCARNATION_KEY, SUPERSEDED
 from .samples import pack_counted, pack_lines, sample_messages
 from .string_cdr import from_cdr, to_cdr
-
-INBOX_QOS = QoSProfile(
-    history=HistoryPolicy.KEEP_ALL,
-    reliability=ReliabilityPolicy.RELIABLE,
-    durability=DurabilityPolicy.VOLATILE,
-)
-SNAPSHOT_QOS = QoSProfile(
-    depth=1,
-    reliability=ReliabilityPolicy.RELIABLE,
-    durability=DurabilityPolicy.TRANSIENT_LOCAL,
-    history=HistoryPolicy.KEEP_LAST,
-)
 
 
 def sample_text(sample: bytes) -> str:
@@ -396,9 +384,9 @@ class Agent:
 
         # Taken serialized (see string_cdr): no message object built per sample.
         self._inbox = node.create_subscription(String, inbox_topic(name), guarded(self._on_inbox), INBOX_QOS, raw=True)
-        self._register_client = node.create_client(Register, f"{commag}/register")
-        self._deregister_client = node.create_client(Deregister, f"{commag}/deregister")
-        self._lookup_client = node.create_client(Lookup, f"{commag}/lookup")
+        self._register_client = node.create_client(Register, f"{commag}/register", qos_profile=SERVICE_QOS)
+        self._deregister_client = node.create_client(Deregister, f"{commag}/deregister", qos_profile=SERVICE_QOS)
+        self._lookup_client = node.create_client(Lookup, f"{commag}/lookup", qos_profile=SERVICE_QOS)
         self._snapshot_sub = node.create_subscription(
             RegistryMsg, f"{commag}/registry", guarded(self._on_snapshot), SNAPSHOT_QOS
         )

@@ -13,7 +13,6 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.executors import ExternalShutdownException
 from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
-from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.msg import RegistryEvent
@@ -23,22 +22,10 @@ from . import store
 from .convert import event_to_msg, to_msg, to_query, to_record
 from .guarded import GuardedNode
 from .launcher import Launcher, LaunchPolicy, workspace_roots
+from .qos import EVENTS_QOS, SERVICE_QOS, SNAPSHOT_QOS
 from .records import EventKind, State
 from .registry import Event, Registry, RegistryConfig
 
-# Transient local: a monitor that joins late still gets the last 1000 events.
-EVENTS_QOS = QoSProfile(
-    depth=1000,
-    reliability=ReliabilityPolicy.RELIABLE,
-    durability=DurabilityPolicy.TRANSIENT_LOCAL,
-    history=HistoryPolicy.KEEP_LAST,
-)
-SNAPSHOT_QOS = QoSProfile(
-    depth=1,
-    reliability=ReliabilityPolicy.RELIABLE,
-    durability=DurabilityPolicy.TRANSIENT_LOCAL,
-    history=HistoryPolicy.KEEP_LAST,
-)
 STALL = 0.25  # s: a tick this late means the ComMAg itself was not running
 _LEVEL = {
     State.HEALTHY: DiagnosticStatus.OK,
@@ -163,9 +150,9 @@ class CommagNode(GuardedNode, LifecycleNode):
         self._snapshot_pub = self.create_lifecycle_publisher(RegistryMsg, "~/registry", SNAPSHOT_QOS)
         self._diag_pub = self.create_lifecycle_publisher(DiagnosticArray, "/diagnostics", 10)
         self._commag_services = [
-            self.create_service(Register, "~/register", self._on_register),
-            self.create_service(Deregister, "~/deregister", self._on_deregister),
-            self.create_service(Lookup, "~/lookup", self._on_lookup),
+            self.create_service(Register, "~/register", self._on_register, qos_profile=SERVICE_QOS),
+            self.create_service(Deregister, "~/deregister", self._on_deregister, qos_profile=SERVICE_QOS),
+            self.create_service(Lookup, "~/lookup", self._on_lookup, qos_profile=SERVICE_QOS),
         ]
         return super().on_configure(state)
 

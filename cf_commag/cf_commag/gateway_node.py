@@ -19,11 +19,11 @@ from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.msg import RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 
-from .client import INBOX_QOS, SNAPSHOT_QOS, Outbox, inbox_topic, make_executor, sample_text
-from .commag_node import EVENTS_QOS
+from .client import Outbox, inbox_topic, make_executor, sample_text
 from .convert import directory_from_msg, entry_from_msg, query_to_request, to_msg
 from .gateway import Gateway, GatewayConfig, form
 from .guarded import GuardedNode
+from .qos import EVENTS_QOS, INBOX_QOS, SERVICE_QOS, SNAPSHOT_QOS
 from .records import Entry, Query, Record
 from .registry import Result
 
@@ -60,9 +60,9 @@ class GatewayNode(GuardedNode, Node):
         p = {name: self.get_parameter(name).value for name in _PARAMS}
         self.config = GatewayConfig(**{k: v for k, v in p.items() if k in GatewayConfig.__dataclass_fields__})
         commag = p["commag"]
-        self._register = self.create_client(Register, f"{commag}/register")
-        self._deregister = self.create_client(Deregister, f"{commag}/deregister")
-        self._lookup = self.create_client(Lookup, f"{commag}/lookup")
+        self._register = self.create_client(Register, f"{commag}/register", qos_profile=SERVICE_QOS)
+        self._deregister = self.create_client(Deregister, f"{commag}/deregister", qos_profile=SERVICE_QOS)
+        self._lookup = self.create_client(Lookup, f"{commag}/lookup", qos_profile=SERVICE_QOS)
         self._known: frozenset[str] = frozenset()  # agents not withdrawn, from the registry snapshot
         self.create_subscription(RegistryMsg, f"{commag}/registry", self._on_snapshot, SNAPSHOT_QOS)
         self.create_subscription(RegistryEvent, f"{commag}/events", self._on_event, EVENTS_QOS)

@@ -134,7 +134,7 @@ def _word(text: str):
     if word is not None:
         return word
     word = str.__new__(Symbol, text) if _WORD_RE.fullmatch(text) else text
-    if len(_WORDS) < 4096:  # agent names, languages, protocols: a small set, written again and again
+    if len(_WORDS) < 4096 and len(text) <= 128:  # agent names, languages, protocols: a few, again and again
         _WORDS[text] = word
     return word
 
@@ -239,7 +239,7 @@ def _agent_text(agent: AgentId) -> str:
     text = _AGENT_TEXTS.get(agent)
     if text is None:
         text = dumps(agent.to_sexp())
-        if len(_AGENT_TEXTS) < 4096:  # the team's agents, written again and again
+        if len(_AGENT_TEXTS) < 4096 and len(agent.name) <= 128:  # the team's agents, again and again
             _AGENT_TEXTS[agent] = text
     return text
 
@@ -423,7 +423,7 @@ def _agents_in(value: str) -> tuple[AgentId, ...]:
     agents = _AGENT_LISTS.get(value)
     if agents is None:
         agents = tuple(AgentId(name) for name in acl_fast.names(value))
-        if len(_AGENT_LISTS) < 4096:
+        if len(_AGENT_LISTS) < 4096 and len(value) <= 1024:
             _AGENT_LISTS[value] = agents
     return agents
 

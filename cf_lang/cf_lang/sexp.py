@@ -118,6 +118,7 @@ _SKIP = object()
 # a known word is one dict lookup. Bounded, so hostile input cannot grow it.
 _ATOMS: dict = {"(": _OPEN, ")": _CLOSE}
 _ATOMS_MAX = 50_000
+_CACHED_ATOM_LENGTH = 64  # longer atoms are rare words or hostile input: not worth keeping
 _atom_get = _ATOMS.get
 
 
@@ -162,7 +163,7 @@ def _classify(tok):
         return _SKIP
     else:
         value = _new_str(Symbol, tok)
-    if len(_ATOMS) < _ATOMS_MAX:
+    if len(tok) <= _CACHED_ATOM_LENGTH and len(_ATOMS) < _ATOMS_MAX:  # bounded in bytes too
         _ATOMS[tok] = value
     return value
 

@@ -187,6 +187,46 @@ async def fuzz(
     return outcome
 
 
+async def churn(host: str, port: int, count: int, seed: int, concurrency: int = 16) -> int:
+    """``count`` agents that come and go: hello, register, lookup, then bye or a dropped connection.
+
+    Returns how many of them went through without a failure answer.
+    """
+    rng = random.Random(seed)
+    ok = 0
+
+    async def one(serial: int) -> None:
+        nonlocal ok
+        reader, writer = await asyncio.open_connection(host, port, limit=1 << 20)
+        name = f"ch{seed}_{serial}"
+        lines = [
+            f"(hello :name {name})",
+            "(register :service-class Kick :team churn :lease 0.5)",
+            "(lookup :service-class Kick)",
+        ]
+        writer.write("".join(f"{line}\n" for line in lines).encode())
+        answers = [await asyncio.wait_for(reader.readline(), 30) for _ in lines]
+        if all(a.startswith((b"(welcome", b"(registered", b"(providers")) for a in answers):
+            ok += 1
+        if rng.random() < 0.5:
+            writer.write(b"(bye)\n")
+            await writer.drain()
+            await asyncio.wait_for(reader.readline(), 30)
+        writer.close()
+        with contextlib.suppress(ConnectionError, OSError):
+            await writer.wait_closed()
+
+    pending: set[asyncio.Task] = set()
+    for serial in range(count):
+        if len(pending) >= concurrency:
+            _, pending = await asyncio.wait(pending, return_when=asyncio.FIRST_COMPLETED)
+        pending.add(asyncio.ensure_future(one(serial)))
+    for result in await asyncio.gather(*pending, return_exceptions=True):
+        if isinstance(result, BaseException):
+            print(f"churn client failed: {result!r}", flush=True)
+    return ok
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--host", default="127.0.0.1")
@@ -194,7 +234,12 @@ def main() -> int:
     ap.add_argument("--lines", type=int, default=100_000)
     ap.add_argument("--seed", type=int, default=int(time.time()))
     ap.add_argument("--concurrency", type=int, default=16)
+    ap.add_argument("--churn", type=int, default=0, help="instead: this many agents that come and go")
     args = ap.parse_args()
+    if args.churn:
+        done = asyncio.run(churn(args.host, args.port, args.churn, args.seed, args.concurrency))
+        print(json.dumps({"churned": args.churn, "ok": done}))
+        return 0 if done == args.churn else 1
     print(f"fuzzing {args.host}:{args.port} with {args.lines} lines, seed {args.seed}", flush=True)
     started = time.monotonic()
     outcome = asyncio.run(fuzz(args.host, args.port, args.lines, args.seed, args.concurrency))
