@@ -206,6 +206,7 @@ class Session:
         token = str(params.get("token", ""))
         if self.gateway.config.token and not hmac.compare_digest(token, self.gateway.config.token):
             self.send(form("failure", in_reply_to="hello", reason="wrong token"))
+            self.send(form("error", reason="wrong token"))  # every close the gateway makes ends with error
             return False
         name = str(params.get("name", ""))
         if not valid_agent_name(name):

@@ -218,6 +218,17 @@ def test_wrong_token_is_refused_and_closed():
         server.stop()
 
 
+def test_a_wrong_token_closes_after_a_final_error_line():
+    server = Server(token="s3cret")
+    try:
+        sock = server.raw()
+        sock.sendall(b'(hello :name intruder :token "guess")\n')
+        lines = sock.makefile("rb").read().decode().splitlines()  # until the gateway closes
+        assert lines == ['(failure :in-reply-to "hello" :reason "wrong token")', '(error :reason "wrong token")']
+    finally:
+        server.stop()
+
+
 def test_silent_connection_must_say_hello_in_time(server):
     sock = server.raw()
     got = lines(sock, 1)
