@@ -28,6 +28,7 @@ setup(
             "commag = cf_commag.commag_node:main",
             "gateway = cf_commag.gateway_node:main",
             "demo_component = cf_commag.demo_component:main",
+            "supervise = cf_commag.respawn:main",
         ]
     },
 )

@@ -13,6 +13,7 @@ import signal
 
 from test_sim_match import start_player_component, start_sim_process
 
+from cf_interfaces.srv import Lookup
 from cf_system import executable, start_commag
 
 
@@ -95,3 +96,43 @@ def test_decision_team_plays_and_survives_losing_an_action_provider(procs, probe
     probe.spin_until(lambda: '"end"' in log.read_text(), timeout=120, what="the end of the match")
     end = json.loads(log.read_text().splitlines()[-1])
     assert end["stats"]["kicks"]["l"] > 0, end  # the decision team played the ball
+
+
+def test_a_commag_killed_mid_match_comes_back_by_itself_and_loses_no_registration(procs, probe, tag, tmp_path):
+    """The ComMAg under its supervisor (what the demo, rcss_team and the launch files' respawn do)."""
+    import subprocess
+
+    commag = [executable("cf_commag", "commag"), "--ros-args", "-r", f"__node:=commag_{tag}"]
+    commag += ["-p", f"persistence_path:={tmp_path / 'registry.json'}", "-p", f"log_dir:={tmp_path / 'logs'}"]
+    supervisor = procs.start([executable("cf_commag", "supervise"), "--delay", "0.5", "--", *commag], "supervise")
+    start_sim_process(procs, tag, tmp_path, half_cycles=600)
+    start_player_component(procs, tag, "perception", "l", 1)
+    start_player_component(procs, tag, "action", "l", 1)
+    start_decision(procs, tag, 1, 1)
+    start_player_component(procs, tag, "perception", "r", 1)
+    start_player_component(procs, tag, "action", "r", 1)
+    names = {f"blue{tag}_1_decision", f"blue{tag}_1_perception", f"blue{tag}_1_action"}
+    for name in names:
+        probe.wait_kind(name, "registered", timeout=60)
+    log = tmp_path / "match.jsonl"
+    probe.spin_until(lambda: log.exists() and len(log.read_text().splitlines()) > 100, timeout=60, what="play")
+    before = set(probe.lookup("Service", direction=Lookup.Request.SPECIFIC))  # every component
+
+    def commag_pid():
+        out = subprocess.run(["pgrep", "-P", str(supervisor.pid)], capture_output=True, text=True).stdout.split()
+        return int(out[0]) if out else None
+
+    first = commag_pid()
+    assert first is not None
+    os.kill(first, signal.SIGKILL)
+    cycles_at_kill = len(log.read_text().splitlines())
+    probe.spin_until(lambda: commag_pid() not in (None, first), timeout=30, what="the supervisor to start it again")
+    # The new ComMAg restored every registration and its lookups answer as before.
+    everyone = {"direction": Lookup.Request.SPECIFIC}
+    probe.spin_until(lambda: set(probe.lookup("Service", **everyone)) >= before, timeout=60, what="registrations")
+    assert names <= before
+    # Nobody was relaunched or withdrawn because of it: the components kept renewing to the new ComMAg.
+    probe.spin_for(3.0)
+    assert not [e for e in probe.events if e.kind_name in ("withdrawn", "relaunching") and e.record.name in names]
+    probe.spin_until(lambda: len(log.read_text().splitlines()) > cycles_at_kill + 100, 60, "the match going on")
+    assert "started again as pid" in procs.log("supervise")

@@ -32,6 +32,7 @@ from std_msgs.msg import String
 
 from cf_commag.client import inbox_topic
 from cf_commag.qos import EVENTS_QOS, INBOX_QOS, SNAPSHOT_QOS
+from cf_commag.respawn import Respawner
 from cf_commag.samples import sample_messages
 from cf_interfaces.msg import Registry, RegistryEvent
 from cf_sim_backend.report import write_report
@@ -127,6 +128,8 @@ class Demo:
         end = time.monotonic() + seconds
         while time.monotonic() < end:
             self.executor.spin_once(timeout_sec=0.05)
+            if self.commag.poll():
+                self.say(f">>> the ComMAg exited ({self.commag.exits[-1]}): started again, it restores its registry")
 
     # ---- the show -------------------------------------------------------------
 
@@ -146,8 +149,8 @@ class Demo:
         self.node.create_subscription(Registry, "/commag/registry", self.on_registry, SNAPSHOT_QOS)
         self.node.create_subscription(String, "/cf_sim/state", self.on_state, STATE_QOS)
 
-        self.start(
-            "commag",
+        # Supervised like launch's respawn=True: a ComMAg that dies comes back with every registration.
+        self.commag = Respawner(
             [
                 exe("cf_commag", "commag"),
                 "--ros-args",
@@ -160,7 +163,9 @@ class Demo:
                 "-p",
                 "startup_grace:=15.0",
             ],
+            log=self.out / "logs" / "commag.log",
         )
+        self.commag.start()
         self.start(
             "gateway",
             [
@@ -255,6 +260,7 @@ class Demo:
         return 0 if end and self.counts["relaunched"] >= 1 and self.counts["withdrawn"] >= 1 else 1
 
     def stop(self) -> None:
+        self.commag.stop()  # first: it must not relaunch what is being torn down
         self.executor.shutdown()
         self.node.destroy_node()
         rclpy.try_shutdown()

@@ -20,6 +20,8 @@ def generate_launch_description() -> LaunchDescription:
                 name="commag",
                 namespace="",
                 parameters=[LaunchConfiguration("params_file")],
+                respawn=True,  # it restores its registry: a ComMAg that dies comes back with every registration
+                respawn_delay=1.0,
                 output="screen",
             ),
         ]

@@ -29,6 +29,7 @@ from rclpy.utilities import remove_ros_args
 
 from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.qos import SNAPSHOT_QOS
+from cf_commag.respawn import Respawner
 from cf_interfaces.msg import Registry
 
 
@@ -65,6 +66,7 @@ class Team:
         self.logs.mkdir(parents=True, exist_ok=True)
         self.procs: dict[str, subprocess.Popen] = {}
         self.registered: set[str] = set()
+        self.commag: Respawner | None = None
         rclpy.init(signal_handler_options=SignalHandlerOptions.NO)  # our handlers stop the children first
         self.node = rclpy.create_node(f"rcss_team_{args.team.lower()}")
         self.node.create_subscription(Registry, f"{args.commag}/registry", self._on_registry, SNAPSHOT_QOS)
@@ -79,6 +81,11 @@ class Team:
         self.procs[name] = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
         log.close()
 
+    def spin_once(self, timeout: float) -> None:
+        self.executor.spin_once(timeout_sec=timeout)
+        if self.commag is not None and self.commag.poll():
+            print(f"the ComMAg exited ({self.commag.exits[-1]}): started again", flush=True)
+
     def wait_for(self, name: str, process: str, timeout: float) -> None:
         deadline = time.monotonic() + timeout
         while name not in self.registered:
@@ -86,7 +93,7 @@ class Team:
                 raise RuntimeError(f"{process} exited with {self.procs[process].returncode}: see {self.logs}")
             if time.monotonic() > deadline:
                 raise RuntimeError(f"{name} did not register in {timeout:.0f} s: see {self.logs}")
-            self.executor.spin_once(timeout_sec=0.1)
+            self.spin_once(0.1)
 
     def run(self) -> int:
         a = self.args
@@ -99,7 +106,9 @@ class Team:
             argv += ["-p", "stop_launched_on_exit:=true"]  # relaunched components end with the team
             # 23 processes on a small machine: a relaunched one may need more than 5 s to register.
             argv += ["-p", f"startup_grace:={max(5.0, 3 * a.lease)}"]
-            self.start("commag", argv)
+            # Supervised like launch's respawn=True: a ComMAg that dies comes back with every registration.
+            self.commag = Respawner(argv, log=self.logs / "commag.log")
+            self.commag.start()
         for n in range(1, a.players + 1):
             stats = ["-p", f"stats_file:={Path(a.stats_dir) / f'{a.team}_{n}.json'}"] if a.stats_dir else []
             argv = [executable("cf_sim_backend", "rcss_player"), *ros, f"team:={a.team}", "-p", f"host:={a.host}"]
@@ -118,12 +127,12 @@ class Team:
         print(f"team {a.team}: {a.players} players and their decisions are up; logs in {self.logs}", flush=True)
         adapters = [p for name, p in self.procs.items() if name.endswith("_rcss_player")]
         while any(p.poll() is None for p in adapters):
-            self.executor.spin_once(timeout_sec=0.2)
+            self.spin_once(0.2)
         # Adapters the ComMAg relaunched are not our children: let them finish (deregister) too.
         ours = {f"{a.team}_{n}_perception" for n in range(1, a.players + 1)}
         deadline = time.monotonic() + 10.0
         while self.registered & ours and time.monotonic() < deadline:
-            self.executor.spin_once(timeout_sec=0.2)
+            self.spin_once(0.2)
         ended = {name: p.returncode for name, p in self.procs.items() if name.endswith("_rcss_player")}
         killed = [name for name, code in ended.items() if code < 0]  # by a signal: the ComMAg relaunched them
         failed = [name for name, code in ended.items() if code > 0]
@@ -132,6 +141,8 @@ class Team:
         return 1 if failed else 0
 
     def stop(self) -> None:
+        if self.commag is not None:
+            self.commag.stop()  # it kills what it relaunched (stop_launched_on_exit)
         for p in self.procs.values():
             if p.poll() is None:
                 p.send_signal(signal.SIGINT)  # components deregister on SIGINT
