@@ -22,18 +22,26 @@ from cf_sim_backend.sim import Simulator
 from cf_sim_backend.world import Params, Side
 
 
-@pytest.fixture
-def report(tmp_path: Path) -> Path:
+def play_logged_match(path: Path, extra_events: dict[int, str] | None = None) -> Path:
+    """A real 3 v 3 match of chasers, logged; ``extra_events`` adds referee events at given cycles."""
     sim = Simulator(
         Params(half_cycles=300, auto_kick_off_cycles=2), team_sizes=(3, 3), team_names=("blue", "red"), seed=4
     )
-    log = MatchLog(tmp_path / "match.jsonl", sim, 0.1)
+    log = MatchLog(path, sim, 0.1)
     while not sim.finished:
         chase_commands(sim, Side.LEFT)
         chase_commands(sim, Side.RIGHT)
         events = sim.step()
+        if extra_events and sim.world.time in extra_events:
+            events = [*events, extra_events[sim.world.time]]
         log.cycle(sim.snapshot(), events)
     log.close()
+    return path
+
+
+@pytest.fixture
+def report(tmp_path: Path) -> Path:
+    play_logged_match(tmp_path / "match.jsonl")
     events = [
         {"t": 0.5, "name": "blue_1_action", "kind": "registered", "state": "healthy", "reason": "registered"},
         {"t": 9.0, "name": "blue_1_action", "kind": "suspect", "state": "suspect", "reason": "missed its lease"},
@@ -53,18 +61,8 @@ def test_report_holds_score_pictures_and_timeline(report: Path):
 
 def test_report_goals_equal_the_score_and_goal_kicks_are_no_goals(tmp_path: Path):
     """A goal kick (``goal kick l``, what the referee logs) is a restart, not a goal."""
-    sim = Simulator(
-        Params(half_cycles=300, auto_kick_off_cycles=2), team_sizes=(3, 3), team_names=("blue", "red"), seed=4
-    )
-    log = MatchLog(tmp_path / "match.jsonl", sim, 0.1)
-    while not sim.finished:
-        chase_commands(sim, Side.LEFT)
-        chase_commands(sim, Side.RIGHT)
-        events = sim.step()
-        if sim.world.time in (100, 400):  # chasers never send the ball out over a goal line: add two
-            events = [*events, f"goal kick {'l' if sim.world.time == 100 else 'r'}"]
-        log.cycle(sim.snapshot(), events)
-    log.close()
+    # Chasers never send the ball out over a goal line: add two goal kicks.
+    play_logged_match(tmp_path / "match.jsonl", {100: "goal kick l", 400: "goal kick r"})
     _, cycles, end = read_log(tmp_path / "match.jsonl")
     goals = scored(cycles)
     assert len(goals) == sum(end["score"]) == 3
