@@ -14,7 +14,7 @@ from ament_index_python.packages import get_package_prefix
 from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 
-from cf_commag.qos import EVENTS_QOS, SNAPSHOT_QOS
+from cf_commag.transport.qos import EVENTS_QOS, SNAPSHOT_QOS
 from cf_interfaces.msg import Registry, RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 

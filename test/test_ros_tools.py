@@ -20,7 +20,7 @@ from rcl_interfaces.msg import ParameterType
 from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
 from std_msgs.msg import String
 
-from cf_commag.qos import INBOX_QOS
+from cf_commag.transport.qos import INBOX_QOS
 from cf_interfaces.msg import Registry
 from cf_interfaces.srv import Lookup
 from cf_system import Probe, Processes, executable, start_commag

@@ -30,10 +30,10 @@ from ament_index_python.packages import get_package_prefix
 from rclpy.executors import SingleThreadedExecutor
 from std_msgs.msg import String
 
-from cf_commag.client import inbox_topic
-from cf_commag.qos import EVENTS_QOS, INBOX_QOS, SNAPSHOT_QOS
 from cf_commag.respawn import Respawner
-from cf_commag.samples import sample_messages
+from cf_commag.transport.outbox import inbox_topic
+from cf_commag.transport.qos import EVENTS_QOS, INBOX_QOS, SNAPSHOT_QOS
+from cf_commag.transport.samples import sample_messages
 from cf_interfaces.msg import Registry, RegistryEvent
 from cf_sim_backend.report import write_report
 from cf_sim_backend.topics import STATE_QOS

@@ -21,8 +21,8 @@ from std_msgs.msg import String
 
 from cf_commag.client import Agent, inbox_topic, make_executor
 from cf_commag.convert import to_msg
-from cf_commag.qos import INBOX_QOS
 from cf_commag.records import Record
+from cf_commag.transport.qos import INBOX_QOS
 from cf_interfaces.srv import Register
 from cf_lang.acl import AclMessage, Performative
 

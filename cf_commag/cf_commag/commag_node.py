@@ -22,9 +22,9 @@ from . import store
 from .convert import event_to_msg, to_msg, to_query, to_record
 from .guarded import GuardedNode
 from .launcher import Launcher, LaunchPolicy, workspace_roots
-from .qos import EVENTS_QOS, SERVICE_QOS, SNAPSHOT_QOS
 from .records import EventKind, State
 from .registry import Event, Registry, RegistryConfig
+from .transport.qos import EVENTS_QOS, SERVICE_QOS, SNAPSHOT_QOS
 
 STALL = 0.25  # s: a tick this late means the ComMAg itself was not running
 _LEVEL = {

@@ -18,7 +18,8 @@ import sys
 
 import rclpy
 
-from .client import Agent, init, spin
+from .agent import Agent
+from .runtime import init, spin
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -26,7 +26,7 @@ from cf_lang.taxonomy import Direction
 
 from .records import Entry, Query, Record, Transport, query_field_problem, record_field_problem, valid_agent_name
 from .registry import Result
-from .samples import pack_lines
+from .transport.samples import pack_lines
 
 PROTOCOL_VERSION = 1
 _K_SENDER = Keyword("sender")

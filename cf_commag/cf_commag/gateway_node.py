@@ -19,13 +19,15 @@ from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.msg import RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 
-from .client import Outbox, inbox_topic, make_executor, sample_text
 from .convert import directory_from_msg, entry_from_msg, query_to_request, to_msg
 from .gateway import Gateway, GatewayConfig, form
 from .guarded import GuardedNode
-from .qos import EVENTS_QOS, INBOX_QOS, SERVICE_QOS, SNAPSHOT_QOS
 from .records import Entry, Query, Record
 from .registry import Result
+from .renewer import Renewer
+from .runtime import make_executor
+from .transport.outbox import Outbox, inbox_topic, sample_text
+from .transport.qos import EVENTS_QOS, INBOX_QOS, SERVICE_QOS, SNAPSHOT_QOS
 
 _PARAMS = {
     "host": ("127.0.0.1", "address to listen on (loopback unless told otherwise)"),
@@ -69,7 +71,7 @@ class GatewayNode(GuardedNode, Node):
         self._outbox = Outbox(self)
         self._inboxes: dict[str, object] = {}
         self._watchers: dict[object, Callable[[str], None]] = {}
-        self._renewed: dict[str, float] = {}
+        self._renewer = Renewer(self._register)
         # Subscriptions are created and destroyed on the executor thread (not thread-safe);
         # the asyncio thread leaves that work here. Publishing and service calls are
         # thread-safe and happen on the asyncio thread directly, without a hop.
@@ -132,11 +134,11 @@ class GatewayNode(GuardedNode, Node):
         except (TimeoutError, RuntimeError) as exc:
             return Result(False, f"ComMAg did not answer: {exc or 'timeout'}")
         if res.accepted:
-            self._renewed[record.name] = time.monotonic()
+            self._renewer.registered(record.name, time.monotonic())
         return Result(res.accepted, res.reason, res.lease_period)
 
     async def deregister(self, name: str) -> Result:
-        self._renewed.pop(name, None)
+        self._renewer.forget(name)
         try:
             res = await self._call(self._deregister, Deregister.Request(name=name))
         except (TimeoutError, RuntimeError) as exc:
@@ -176,7 +178,7 @@ class GatewayNode(GuardedNode, Node):
             if sub is not None:
                 self.destroy_subscription(sub)
 
-        self._renewed.pop(name, None)
+        self._renewer.forget(name)
         self._on_ros(destroy)
 
     def watch_events(self, key: object, deliver: Callable[[str], None] | None) -> None:
@@ -213,10 +215,8 @@ class GatewayNode(GuardedNode, Node):
         """Renew the agents that showed life within their lease, three times per lease."""
         now = time.monotonic()
         for record in self.gateway.due_renewals(now):
-            last = self._renewed.get(record.name)
-            if last is not None and now - last >= record.lease_period / 3 and self._register.service_is_ready():
-                self._renewed[record.name] = now
-                self._register.call_async(Register.Request(component=to_msg(record)))
+            if self._renewer.due(record.name, record.lease_period, now):
+                self._renewer.send(record.name, Register.Request(component=to_msg(record)), now)
 
     def shutdown(self) -> None:
         asyncio.run_coroutine_threadsafe(self.gateway.stop(), self.loop).result(timeout=5)

@@ -207,7 +207,7 @@ def test_reply_by_on_the_wire_is_todays_date_and_the_timeout_still_works(ros, un
     asker = agent(ros, f"asker_{unique}", "PlayerDecision", commag)
     peer = ros.node(f"peer_{unique}")  # a plain reader of the inbox: it never answers
     seen: list[str] = []
-    from cf_commag.qos import INBOX_QOS
+    from cf_commag.transport.qos import INBOX_QOS
 
     peer.create_subscription(String, inbox_topic(f"silent_{unique}"), lambda m: seen.append(m.data), INBOX_QOS)
     sent_at = time.time()

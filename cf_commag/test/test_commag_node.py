@@ -9,7 +9,7 @@ from rclpy.lifecycle import TransitionCallbackReturn
 from rclpy.parameter import Parameter
 
 from cf_commag.commag_node import CommagNode
-from cf_commag.qos import EVENTS_QOS, SNAPSHOT_QOS
+from cf_commag.transport.qos import EVENTS_QOS, SNAPSHOT_QOS
 from cf_interfaces.msg import ComponentRecord, Registry, RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from hypothesis import given
 from hypothesis import strategies as st
 
-from cf_commag.samples import SAMPLE_MAX_BYTES, SAMPLE_MAX_MESSAGES, pack_lines, sample_messages
+from cf_commag.transport.samples import SAMPLE_MAX_BYTES, SAMPLE_MAX_MESSAGES, pack_lines, sample_messages
 from cf_lang import acl
 from cf_lang.acl import AclMessage, AgentId, Performative
 

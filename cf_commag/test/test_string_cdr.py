@@ -8,8 +8,8 @@ from hypothesis import strategies as st
 from rclpy.serialization import deserialize_message, serialize_message
 from std_msgs.msg import String
 
-from cf_commag.client import sample_text
-from cf_commag.string_cdr import from_cdr, to_cdr
+from cf_commag.transport.cdr import from_cdr, to_cdr
+from cf_commag.transport.outbox import sample_text
 
 
 @settings(max_examples=500)

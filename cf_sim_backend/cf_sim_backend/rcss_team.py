@@ -28,8 +28,8 @@ from rclpy.signals import SignalHandlerOptions
 from rclpy.utilities import remove_ros_args
 
 from cf_commag.given_parameters import node_name as safe_node_name
-from cf_commag.qos import SNAPSHOT_QOS
 from cf_commag.respawn import Respawner
+from cf_commag.transport.qos import SNAPSHOT_QOS
 from cf_interfaces.msg import Registry
 
 
