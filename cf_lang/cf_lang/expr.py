@@ -86,7 +86,7 @@ def _pairs(mapping: dict[str, Any]) -> list:
     out: list = []
     for name, value in mapping.items():
         out.append(Keyword(name))
-        out.append(_encode_value(value))
+        out.append(encode_value(value))
     return out
 
 
@@ -101,11 +101,12 @@ def encode_instance(model: Concept) -> list:
         if value is None or (isinstance(value, tuple) and not value):
             continue
         out.append(Keyword(info.serialization_alias or info.alias or name))
-        out.append(_encode_value(value))
+        out.append(encode_value(value))
     return out
 
 
-def _encode_value(value: Any):
+def encode_value(value: Any):
+    """A model field's value as an S-expression (what ``unparse`` writes for it)."""
     if isinstance(value, BaseModel):
         return encode_instance(value)
     if isinstance(value, Enum):
@@ -113,7 +114,7 @@ def _encode_value(value: Any):
     if isinstance(value, bool):
         return _TRUE if value else _FALSE
     if isinstance(value, (tuple, list)):
-        return [SEQUENCE, *(_encode_value(v) for v in value)]
+        return [SEQUENCE, *(encode_value(v) for v in value)]
     return value
 
 

@@ -7,23 +7,19 @@ import sys
 
 from std_msgs.msg import String
 
-from cf_commag.client import Refuse, Responder, run
-from cf_lang import Exec, parse_expr
-from cf_lang.acl import AclMessage
-from cf_lang.ontology import Team
+from cf_commag.runtime import run
 
 from .player_base import PlayerComponentNode
-from .skills import Skill, SkillError, skill_for
+from .services import ActionService
 from .topics import COMMAND_QOS, command_topic, encode_command
 from .world import World
 
 
 class ActionNode(PlayerComponentNode):
-    """Action of one player (service class Action). Parameters: PLAYER_PARAMS.
+    """Action of one player (service class Action) on the embedded simulator. Parameters: PLAYER_PARAMS.
 
-    A request is agreed when its skill starts and informed when it is done
-    (failure if it fails or a newer request replaces it). Unknown methods,
-    another player's key or impossible actions are refused with the reason.
+    Requests are served by :class:`ActionService` (shared with the rcssserver adapter); this node
+    steps the current skill every cycle and publishes its commands to the simulator.
     """
 
     ROLE = "action"
@@ -32,27 +28,9 @@ class ActionNode(PlayerComponentNode):
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
         self.commands = self.create_publisher(String, command_topic(self.p["sim"]), COMMAND_QOS)
-        self.current: tuple[Skill, Responder] | None = None
-        self.agent.serve("fipa-request", self._on_request)
-
-    def _on_request(self, msg: AclMessage, responder: Responder) -> None:
-        expr = parse_expr(msg.content or "")
-        if not isinstance(expr, Exec) or expr.cls != "Player":
-            raise Refuse("this action component executes (exec Player <method> ...) only")
-        if expr.key.get("playerNumber") != self.number or expr.key.get("whichTeam") is not Team.OUR:
-            number, team = expr.key.get("playerNumber"), expr.key.get("whichTeam")
-            raise Refuse(f"I act for our player {self.number}, not {team.value if team else '?'} player {number}")
-        if self.world is None:
-            raise Refuse("the simulator has not started")
-        me = self.world.player(self.side, self.number)
-        try:
-            skill = skill_for(expr.method, expr.action, self.side, self.world, me)
-        except SkillError as exc:
-            raise Refuse(str(exc)) from None
-        if self.current is not None and self.current[1].open:
-            self.current[1].failure("replaced by a newer request")
-        responder.agree()
-        self.current = (skill, responder)
+        self.action = ActionService(
+            self.agent, lambda: (self.number, self.side), lambda: self.world, "the simulator has not started"
+        )
 
     def on_cycle(self, world: World) -> None:
         self._act(world)
@@ -61,21 +39,13 @@ class ActionNode(PlayerComponentNode):
             self.commands.publish(String(data=json.dumps(done)))
 
     def _act(self, world: World) -> None:
-        if self.current is None:
+        if not self.action.active:
             return
-        skill, responder = self.current
-        if not responder.open:
-            self.current = None
-            return
+        skill = self.action.skill
         step = skill.step(world, world.player(self.side, self.number))
         for cmd in step.commands:
             self.commands.publish(String(data=encode_command(self.side.value, self.number, cmd[0], cmd[1:])))
-        if step.status == "done":
-            responder.inform(f"(done {skill.name} :cycles {skill.cycles})")
-            self.current = None
-        elif step.status == "failed":
-            responder.failure(step.reason)
-            self.current = None
+        self.action.settle(step.status, step.reason, skill.name, skill.cycles)
 
 
 def main() -> int:

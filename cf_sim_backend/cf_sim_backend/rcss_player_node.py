@@ -30,18 +30,14 @@ from collections import deque
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.node import Node
 
-from cf_commag.client import Agent, Refuse, Responder, init, own_launch_command, spin
+from cf_commag.client import Agent, init, own_launch_command, spin
 from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.given_parameters import parameters_for
 from cf_commag.guarded import GuardedNode
-from cf_lang import Exec, parse_expr
-from cf_lang.acl import AclMessage
-from cf_lang.ontology import Team
 
-from .perception_node import PerceptionService
 from .rcss_belief import world_state
 from .rcss_session import Session
-from .skills import SkillError, skill_for
+from .services import ActionService, PerceptionService
 from .world import Side
 
 PARAMS = {
@@ -78,7 +74,7 @@ class RcssPlayerNode(GuardedNode, Node):
         self.session = Session(str(self.p["team"]), bool(self.p["goalie"]), int(self.p["version"]))
         self.agents: list[Agent] = []
         self.perception: PerceptionService | None = None  # once the server has given us a number
-        self.current: Responder | None = None
+        self.action: ActionService | None = None
         self.synch = False
         self.cycle_done = -1  # the last cycle acted on
         self.waiting = False  # synch mode: perceived this cycle, (done) not yet sent
@@ -191,7 +187,7 @@ class RcssPlayerNode(GuardedNode, Node):
         # is relaunched once (the action registration comes back with it).
         action = Agent(self, name=f"{team}_{n}_action", service_class="Action", **common)
         self.perception = PerceptionService(perception, "the server has not sent a cycle")
-        action.serve("fipa-request", self._on_request)
+        self.action = ActionService(action, lambda: (b.number, b.side or Side.LEFT), b.world, "", self._on_start)
         self.agents.extend([perception, action])  # spin() holds this very list
 
     def _watch(self) -> None:
@@ -239,35 +235,13 @@ class RcssPlayerNode(GuardedNode, Node):
         acted = self.session.act()
         for text in acted.commands:
             self._send(text)
-        responder = self.current
-        if responder is None or acted.status in ("idle", "running"):
-            return
-        self.current = None
-        if responder.open:
-            if acted.status == "done":
-                responder.inform(f"(done {acted.name} :cycles {acted.cycles})")
-            else:
-                responder.failure(acted.reason)
+        if self.action is not None:
+            self.action.settle(acted.status, acted.reason, acted.name, acted.cycles)
 
     # ---- the services ---------------------------------------------------------------
 
-    def _on_request(self, msg: AclMessage, responder: Responder) -> None:
-        expr = parse_expr(msg.content or "")
-        b = self.session.belief
-        if not isinstance(expr, Exec) or expr.cls != "Player":
-            raise Refuse("this action component executes (exec Player <method> ...) only")
-        if expr.key.get("playerNumber") != b.number or expr.key.get("whichTeam") is not Team.OUR:
-            number, team = expr.key.get("playerNumber"), expr.key.get("whichTeam")
-            raise Refuse(f"I act for our player {b.number}, not {team.value if team else '?'} player {number}")
-        world = b.world()
-        try:
-            skill = skill_for(expr.method, expr.action, b.side or Side.LEFT, world, world.player(b.side, b.number))
-        except SkillError as exc:
-            raise Refuse(str(exc)) from None
-        if self.current is not None and self.current.open:
-            self.current.failure("replaced by a newer request")
-        responder.agree()
-        self.current = responder
+    def _on_start(self, skill) -> None:
+        """A request's skill starts (ActionService agreed to it): the session carries it out."""
         self.session.start(skill)
         if self.waiting:
             # The decision answered this cycle's perception: act now rather than wait out synch_wait.
