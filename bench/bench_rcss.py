@@ -19,7 +19,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from cf_sim_backend.rcss_trace import belief_errors, localisation_errors
+from cf_sim_backend.rcss.trace import belief_errors, localisation_errors
 
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "cf_sim_backend/test/data/rcss"

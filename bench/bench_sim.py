@@ -22,8 +22,8 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "test"))
 
-from cf_sim_backend.chaser import chase_commands  # noqa: E402
-from cf_sim_backend.sim import Simulator  # noqa: E402
+from cf_sim_backend.embedded.chaser import chase_commands  # noqa: E402
+from cf_sim_backend.embedded.sim import Simulator  # noqa: E402
 from cf_sim_backend.world import Params, Side  # noqa: E402
 
 
@@ -47,7 +47,7 @@ def budget(cycles: int) -> None:
     from std_msgs.msg import String
 
     from cf_commag.client import Agent
-    from cf_sim_backend.topics import STATE_QOS, state_topic
+    from cf_sim_backend.embedded.topics import STATE_QOS, state_topic
     from cf_system import Processes, executable, start_commag
 
     tag = "s" + uuid.uuid4().hex[:8]

@@ -16,9 +16,9 @@ import statistics
 
 from cf_decision.policy import cycles_to_ball, decide
 from cf_decision.requests import same_action
-from cf_sim_backend.chaser import chase_commands
+from cf_sim_backend.embedded.chaser import chase_commands
+from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.perception import observe
-from cf_sim_backend.sim import Simulator
 from cf_sim_backend.skills import SkillError, skill_for
 from cf_sim_backend.world import Params, Side
 

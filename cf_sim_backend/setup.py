@@ -25,11 +25,11 @@ setup(
     license="Apache-2.0",
     entry_points={
         "console_scripts": [
-            "sim = cf_sim_backend.sim_node:main",
-            "perception = cf_sim_backend.perception_node:main",
-            "action = cf_sim_backend.action_node:main",
-            "rcss_player = cf_sim_backend.rcss_player_node:main",
-            "rcss_team = cf_sim_backend.rcss_team:main",
+            "sim = cf_sim_backend.embedded.sim_node:main",
+            "perception = cf_sim_backend.embedded.perception_node:main",
+            "action = cf_sim_backend.embedded.action_node:main",
+            "rcss_player = cf_sim_backend.rcss.player_node:main",
+            "rcss_team = cf_sim_backend.rcss.team:main",
         ]
     },
 )

@@ -49,8 +49,8 @@ def our_node_classes() -> list[type]:
     found = {}
     for package in PACKAGES:
         pkg = importlib.import_module(package)
-        for info in pkgutil.iter_modules(pkg.__path__):
-            module = importlib.import_module(f"{package}.{info.name}")
+        for info in pkgutil.walk_packages(pkg.__path__, prefix=f"{package}."):
+            module = importlib.import_module(info.name)
             for _, cls in inspect.getmembers(module, inspect.isclass):
                 if issubclass(cls, Node) and cls.__module__.split(".")[0] in PACKAGES:
                     found[cls.__qualname__] = cls

@@ -20,8 +20,8 @@ from pathlib import Path
 from cf_commag.client import Agent
 from cf_lang import parse_expr
 from cf_lang.ontology import WorldState
-from cf_sim_backend.rcss_protocol import BODY_COMMANDS, command_name, parse, well_formed
-from cf_sim_backend.rcss_trace import read_text
+from cf_sim_backend.rcss.protocol import BODY_COMMANDS, command_name, parse, well_formed
+from cf_sim_backend.rcss.trace import read_text
 from cf_system import executable, start_commag
 
 TRACE = (

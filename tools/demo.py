@@ -35,8 +35,8 @@ from cf_commag.transport.outbox import inbox_topic
 from cf_commag.transport.qos import EVENTS_QOS, INBOX_QOS, SNAPSHOT_QOS
 from cf_commag.transport.samples import sample_messages
 from cf_interfaces.msg import Registry, RegistryEvent
-from cf_sim_backend.report import write_report
-from cf_sim_backend.topics import STATE_QOS
+from cf_sim_backend.embedded.report import write_report
+from cf_sim_backend.embedded.topics import STATE_QOS
 
 TEAMS = {"l": "blue", "r": "red"}
 

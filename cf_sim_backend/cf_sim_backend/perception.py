@@ -28,8 +28,7 @@ from cf_lang.ontology import (
     Velocity,
     WorldState,
 )
-
-from .world import Side, World, direction_deg, distance, norm_deg
+from cf_sim_backend.world import Side, World, direction_deg, distance, norm_deg
 
 VIEW_WIDTH = 120.0
 FEEL_DISTANCE = 3.0

@@ -15,9 +15,8 @@ from cf_lang.acl import AclMessage
 from cf_lang.expr import encode_value
 from cf_lang.ontology import Team, WorldState
 from cf_lang.sexp import dumps
-
-from .skills import Skill, SkillError, skill_for
-from .world import Side, World
+from cf_sim_backend.skills import Skill, SkillError, skill_for
+from cf_sim_backend.world import Side, World
 
 
 def evaluate(val: Val, state: WorldState) -> str:

@@ -13,9 +13,8 @@ import math
 from dataclasses import dataclass
 
 from cf_lang.ontology import actions as act
-
-from .perception import to_own_frame
-from .world import Player, Side, World, direction_deg, distance, norm_deg
+from cf_sim_backend.perception import to_own_frame
+from cf_sim_backend.world import Player, Side, World, direction_deg, distance, norm_deg
 
 Command = tuple  # ("dash", power, dir) | ("turn", moment) | ("kick", power, dir) | ...
 TIMEOUT_CYCLES = 300

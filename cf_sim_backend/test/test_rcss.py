@@ -12,9 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from cf_sim_backend.localise import localise
-from cf_sim_backend.rcss_protocol import FLAGS, parse, read_see
-from cf_sim_backend.rcss_trace import localisation_errors, read_trace
+from cf_sim_backend.rcss.localise import localise
+from cf_sim_backend.rcss.protocol import FLAGS, parse, read_see
+from cf_sim_backend.rcss.trace import localisation_errors, read_trace
 
 DATA = Path(__file__).parent / "data" / "rcss"
 

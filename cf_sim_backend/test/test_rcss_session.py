@@ -15,10 +15,10 @@ import pytest
 from cf_lang.ontology import PlayMode, Team
 from cf_lang.ontology import actions as act
 from cf_lang.ontology.positioning import AbsolutePositioning
-from cf_sim_backend.rcss_belief import PLAYER_MEMORY, UNSURE, Belief, sim_mode, world_state
-from cf_sim_backend.rcss_protocol import BODY_COMMANDS, parse, well_formed
-from cf_sim_backend.rcss_session import Session, rcss_command
-from cf_sim_backend.rcss_trace import belief_errors, read_trace
+from cf_sim_backend.rcss.belief import PLAYER_MEMORY, UNSURE, Belief, sim_mode, world_state
+from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse, well_formed
+from cf_sim_backend.rcss.session import Session, rcss_command
+from cf_sim_backend.rcss.trace import belief_errors, read_trace
 from cf_sim_backend.skills import Intercept, KickTo, MoveTo, Skill, skill_for
 from cf_sim_backend.world import Side
 
@@ -49,7 +49,7 @@ def test_the_command_checker_accepts_what_the_real_client_sent_and_rejects_nonse
 
 
 def _lines(path: Path) -> list[str]:
-    from cf_sim_backend.rcss_trace import read_text
+    from cf_sim_backend.rcss.trace import read_text
 
     return read_text(path).splitlines()
 
@@ -314,7 +314,7 @@ def _dead_reckoned_errors(our_turn: float | None) -> list[float]:
     With ``our_turn``, the adapter also sends that turn after every think, as a decision might;
     a replay, like a loaded server that got it late, never executes it.
     """
-    from cf_sim_backend.rcss_trace import _truth
+    from cf_sim_backend.rcss.trace import _truth
 
     belief, truth, errors = Belief("PyTest"), {}, []
     for direction, msg in read_trace(SYNCH):

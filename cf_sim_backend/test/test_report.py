@@ -15,10 +15,10 @@ from pathlib import Path
 
 import pytest
 
-from cf_sim_backend.chaser import chase_commands
-from cf_sim_backend.matchlog import MatchLog
-from cf_sim_backend.report import read_log, scored, write_report
-from cf_sim_backend.sim import Simulator
+from cf_sim_backend.embedded.chaser import chase_commands
+from cf_sim_backend.embedded.matchlog import MatchLog
+from cf_sim_backend.embedded.report import read_log, scored, write_report
+from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.world import Params, Side
 
 

@@ -9,11 +9,11 @@ import pytest
 
 from cf_lang import unparse
 from cf_lang.ontology import PlayMode, Team
-from cf_sim_backend import physics, referee
-from cf_sim_backend.chaser import chase_commands
+from cf_sim_backend.embedded import physics, referee
+from cf_sim_backend.embedded.chaser import chase_commands
+from cf_sim_backend.embedded.physics import CommandError
+from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.perception import observe
-from cf_sim_backend.physics import CommandError
-from cf_sim_backend.sim import Simulator
 from cf_sim_backend.world import Params, Side
 
 QUIET = Params(ball_rand=0.0, player_rand=0.0, auto_kick_off_cycles=1)

@@ -4,7 +4,7 @@ From a match log (docs/simulator.md) and, optionally, the ComMAg's registry
 events: the score and statistics, the ball's heat map and path with shots and
 goals, every player's trajectory, and a timeline of each component's states.
 
-    python -m cf_sim_backend.report match.jsonl [registry-events.json] [report.html]
+    python -m cf_sim_backend.embedded.report match.jsonl [registry-events.json] [report.html]
 """
 
 from __future__ import annotations

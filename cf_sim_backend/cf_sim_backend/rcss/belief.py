@@ -31,13 +31,12 @@ from cf_lang.ontology import (
     Velocity,
     WorldState,
 )
-
-from .localise import localise
-from .perception import relative_mode, to_own_frame, yaw_in_own_frame
-from .rcss_protocol import read_see
-from .world import Ball as SimBall
-from .world import Params, Side, World, norm_deg
-from .world import Player as SimPlayer
+from cf_sim_backend.perception import relative_mode, to_own_frame, yaw_in_own_frame
+from cf_sim_backend.rcss.localise import localise
+from cf_sim_backend.rcss.protocol import read_see
+from cf_sim_backend.world import Ball as SimBall
+from cf_sim_backend.world import Params, Side, World, norm_deg
+from cf_sim_backend.world import Player as SimPlayer
 
 PLAYER_MEMORY = 30  # cycles a player not seen again is still reported
 BALL_MEMORY = 100  # cycles the ball's estimate is still reported

@@ -14,12 +14,11 @@ from std_msgs.msg import String
 
 from cf_commag.client import Agent, init, own_launch_command, spin
 from cf_commag.guarded import GuardedNode
-
-from .matchlog import MatchLog
-from .physics import CommandError
-from .sim import Simulator
-from .topics import COMMAND_QOS, STATE_QOS, command_topic, state_topic
-from .world import Params, Side
+from cf_sim_backend.embedded.matchlog import MatchLog
+from cf_sim_backend.embedded.physics import CommandError
+from cf_sim_backend.embedded.sim import Simulator
+from cf_sim_backend.embedded.topics import COMMAND_QOS, STATE_QOS, command_topic, state_topic
+from cf_sim_backend.world import Params, Side
 
 _PARAMS = {
     "sim": ("cf_sim", "name of this simulation: topics are /<sim>/state and /<sim>/commands"),

@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .sim import Simulator
-from .world import Side
+from cf_sim_backend.embedded.sim import Simulator
+from cf_sim_backend.world import Side
 
 FORMAT = "cf-match-log"
 VERSION = 1

@@ -5,8 +5,8 @@ It is the opponent the evaluation plays against, and the load of the simulator b
 
 from __future__ import annotations
 
-from .sim import Simulator
-from .world import Side, direction_deg, distance, norm_deg
+from cf_sim_backend.embedded.sim import Simulator
+from cf_sim_backend.world import Side, direction_deg, distance, norm_deg
 
 
 def chase_commands(sim: Simulator, side: Side) -> None:

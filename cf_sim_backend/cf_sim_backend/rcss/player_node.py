@@ -34,11 +34,10 @@ from cf_commag.client import Agent, init, own_launch_command, spin
 from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.given_parameters import parameters_for
 from cf_commag.guarded import GuardedNode
-
-from .rcss_belief import world_state
-from .rcss_session import Session
-from .services import ActionService, PerceptionService
-from .world import Side
+from cf_sim_backend.rcss.belief import world_state
+from cf_sim_backend.rcss.session import Session
+from cf_sim_backend.services import ActionService, PerceptionService
+from cf_sim_backend.world import Side
 
 PARAMS = {
     "host": ("127.0.0.1", "rcssserver's host"),

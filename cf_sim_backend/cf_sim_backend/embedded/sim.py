@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import random
 
-from . import physics, referee
-from .physics import CommandError
-from .world import Ball, Params, Player, Side, World, direction_deg
+from cf_sim_backend.embedded import physics, referee
+from cf_sim_backend.embedded.physics import CommandError
+from cf_sim_backend.world import Ball, Params, Player, Side, World, direction_deg
 
 _ARITY = {
     "dash": (1, 2),

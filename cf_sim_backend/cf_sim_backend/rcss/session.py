@@ -13,10 +13,9 @@ import re
 from dataclasses import dataclass, field
 
 from cf_lang.errors import LanguageError
-
-from .rcss_belief import Belief
-from .rcss_protocol import BODY_COMMANDS, parse
-from .skills import Command, Skill
+from cf_sim_backend.rcss.belief import Belief
+from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse
+from cf_sim_backend.skills import Command, Skill
 
 _EXECUTED = ("kick", "dash", "turn", "move", "catch")  # sense_body counters of body commands
 _SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")

@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import random
 
-from .world import Player, World, direction_deg, distance, norm_deg
+from cf_sim_backend.world import Player, World, direction_deg, distance, norm_deg
 
 BODY_COMMANDS = ("dash", "turn", "kick", "catch", "tackle", "move")
 STOPPED_MODES = ("before_kick_off", "half_time", "time_over")

@@ -8,11 +8,10 @@ import sys
 from std_msgs.msg import String
 
 from cf_commag.runtime import run
-
-from .player_base import PlayerComponentNode
-from .services import ActionService
-from .topics import COMMAND_QOS, command_topic, encode_command
-from .world import World
+from cf_sim_backend.embedded.player_base import PlayerComponentNode
+from cf_sim_backend.embedded.topics import COMMAND_QOS, command_topic, encode_command
+from cf_sim_backend.services import ActionService
+from cf_sim_backend.world import World
 
 
 class ActionNode(PlayerComponentNode):

@@ -11,9 +11,9 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .localise import localise
-from .rcss_belief import UNSURE, Belief
-from .rcss_protocol import parse, read_see
+from cf_sim_backend.rcss.belief import UNSURE, Belief
+from cf_sim_backend.rcss.localise import localise
+from cf_sim_backend.rcss.protocol import parse, read_see
 
 
 def read_text(path: Path) -> str:

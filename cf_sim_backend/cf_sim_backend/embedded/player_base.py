@@ -11,9 +11,8 @@ from std_msgs.msg import String
 from cf_commag.client import Agent, own_launch_command
 from cf_commag.given_parameters import parameters_for
 from cf_commag.guarded import GuardedNode
-
-from .topics import STATE_QOS, state_topic
-from .world import Side, World, world_from_snapshot
+from cf_sim_backend.embedded.topics import STATE_QOS, state_topic
+from cf_sim_backend.world import Side, World, world_from_snapshot
 
 PLAYER_PARAMS = {
     "sim": ("cf_sim", "the simulation to play in (its topics are /<sim>/...)"),

@@ -6,11 +6,10 @@ import random
 import sys
 
 from cf_commag.runtime import run
-
-from .perception import observe
-from .player_base import PlayerComponentNode
-from .services import PerceptionService
-from .world import World
+from cf_sim_backend.embedded.player_base import PlayerComponentNode
+from cf_sim_backend.perception import observe
+from cf_sim_backend.services import PerceptionService
+from cf_sim_backend.world import World
 
 
 class PerceptionNode(PlayerComponentNode):

@@ -9,7 +9,7 @@ lies still until the side that has it kicks; opponents are kept 9.15 m away.
 
 from __future__ import annotations
 
-from .world import Side, World, kick_off_position
+from cf_sim_backend.world import Side, World, kick_off_position
 
 SET_PIECES = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick")
 
