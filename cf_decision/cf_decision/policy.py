@@ -21,12 +21,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from cf_lang.ontology import AbsolutePositioning, Player, PlayMode, Team, WorldState
+from cf_lang.ontology import FIELD, AbsolutePositioning, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
 from .roles import Role, home_position, role_of
 
-FIELD_HALF_LENGTH = 52.5
+FIELD_HALF_LENGTH = FIELD.half_length
 GOAL = (FIELD_HALF_LENGTH, 0.0)
 OWN_GOAL = (-FIELD_HALF_LENGTH, 0.0)
 KICKABLE = 1.0
@@ -129,7 +129,9 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
 def goalkeeper(state: WorldState, me: tuple[float, float], ball: tuple[float, float] | None) -> Decision:
     if ball is not None:
         d = _dist(me, ball)
-        in_area = ball[0] < -FIELD_HALF_LENGTH + 16.5 and abs(ball[1]) < 20.16
+        in_area = (
+            ball[0] < -FIELD_HALF_LENGTH + FIELD.penalty_area_length and abs(ball[1]) < FIELD.penalty_area_width / 2
+        )
         if d <= KICKABLE:
             return Decision(
                 "pass", act.Pass(target=_point(0.0, 25.0 if me[1] >= 0 else -25.0), power=100.0), "clear the ball"

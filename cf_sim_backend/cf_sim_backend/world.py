@@ -11,6 +11,8 @@ import math
 from dataclasses import dataclass, field
 from enum import StrEnum
 
+from cf_lang.ontology import FIELD
+
 
 class Side(StrEnum):
     LEFT = "l"
@@ -30,11 +32,11 @@ class Side(StrEnum):
 class Params:
     """rcssserver's defaults where it has one."""
 
-    field_length: float = 105.0
-    field_width: float = 68.0
-    goal_width: float = 14.02
-    penalty_area_length: float = 16.5
-    penalty_area_width: float = 40.32
+    field_length: float = FIELD.length
+    field_width: float = FIELD.width
+    goal_width: float = FIELD.goal_width
+    penalty_area_length: float = FIELD.penalty_area_length
+    penalty_area_width: float = FIELD.penalty_area_width
     ball_size: float = 0.085
     ball_decay: float = 0.94
     ball_speed_max: float = 3.0
@@ -53,7 +55,7 @@ class Params:
     stamina_inc_max: float = 45.0
     catchable_area: float = 1.3
     tackle_dist: float = 2.0
-    kick_off_clearance: float = 9.15
+    kick_off_clearance: float = FIELD.centre_circle_radius
     half_cycles: int = 3000
     halves: int = 2
     goal_pause_cycles: int = 20

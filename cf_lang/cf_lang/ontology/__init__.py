@@ -5,6 +5,7 @@ from __future__ import annotations
 from .actions import PLAYER_METHODS
 from .base import LANGUAGE, ONTOLOGY, Concept, LineName, PlayMode, RegionName, Role, Team
 from .objects import (
+    FIELD,
     Ball,
     Flag,
     Game,
@@ -54,6 +55,7 @@ def class_name(model: Concept | type[Concept]) -> str:
 
 __all__ = [
     "CLASSES",
+    "FIELD",
     "LANGUAGE",
     "METHODS",
     "ONTOLOGY",

@@ -24,6 +24,18 @@ class SoccerField(Concept):
     goal_area_width: float = Field(default=18.32, gt=0)
     centre_circle_radius: float = Field(default=9.15, gt=0)
 
+    @property
+    def half_length(self) -> float:
+        return self.length / 2
+
+    @property
+    def half_width(self) -> float:
+        return self.width / 2
+
+
+# The standard field: the one place its dimensions are written (decision, simulator, report).
+FIELD = SoccerField()
+
 
 class Region(Concept):
     """A named rectangle of the field (the centre circle: its bounding box)."""

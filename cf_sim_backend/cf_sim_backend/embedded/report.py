@@ -15,6 +15,8 @@ import sys
 from collections import Counter
 from pathlib import Path
 
+from cf_lang.ontology import FIELD
+
 SCALE = 8.0  # pixels per metre
 COLORS = {"l": "#1f5fbf", "r": "#c8302c"}
 STATE_COLORS = {
@@ -47,18 +49,20 @@ def _field(length: float, width: float, body: str, title: str) -> str:
         f'<rect x="0" y="0" width="{w:.0f}" height="{h:.0f}" fill="#2f7d3a"/>',
         f'<rect x="{x0:.1f}" y="{y0:.1f}" width="{x1 - x0:.1f}" height="{y1 - y0:.1f}" fill="none" stroke="white" stroke-width="2"/>',
         f'<line x1="{cx:.1f}" y1="{y0:.1f}" x2="{cx:.1f}" y2="{y1:.1f}" stroke="white" stroke-width="2"/>',
-        f'<circle cx="{cx:.1f}" cy="{cy:.1f}" r="{9.15 * SCALE:.1f}" fill="none" stroke="white" stroke-width="2"/>',
+        f'<circle cx="{cx:.1f}" cy="{cy:.1f}" r="{FIELD.centre_circle_radius * SCALE:.1f}" fill="none" stroke="white" stroke-width="2"/>',
     ]
     for sign in (-1, 1):
         goal_x = length / 2 if sign > 0 else -length / 2 - 2
-        gx, gy = px(goal_x, 7.01)
+        gx, gy = px(goal_x, FIELD.goal_width / 2)
         lines.append(
-            f'<rect x="{gx:.1f}" y="{gy:.1f}" width="{2 * SCALE:.1f}" height="{14.02 * SCALE:.1f}" fill="white" opacity="0.8"/>'
+            f'<rect x="{gx:.1f}" y="{gy:.1f}" width="{2 * SCALE:.1f}" height="{FIELD.goal_width * SCALE:.1f}" '
+            'fill="white" opacity="0.8"/>'
         )
-        area_x = length / 2 - 16.5 if sign > 0 else -length / 2
-        ax, ay = px(area_x, 20.16)
+        area_x = length / 2 - FIELD.penalty_area_length if sign > 0 else -length / 2
+        ax, ay = px(area_x, FIELD.penalty_area_width / 2)
         lines.append(
-            f'<rect x="{ax:.1f}" y="{ay:.1f}" width="{16.5 * SCALE:.1f}" height="{40.32 * SCALE:.1f}" '
+            f'<rect x="{ax:.1f}" y="{ay:.1f}" width="{FIELD.penalty_area_length * SCALE:.1f}" '
+            f'height="{FIELD.penalty_area_width * SCALE:.1f}" '
             'fill="none" stroke="white" stroke-width="2"/>'
         )
     return (
@@ -68,13 +72,18 @@ def _field(length: float, width: float, body: str, title: str) -> str:
     )
 
 
+def _dimensions(header: dict) -> tuple[float, float]:
+    """The field's length and width from the match log's header (the standard field if it has none)."""
+    field = header.get("field", {})
+    return field.get("length", FIELD.length), field.get("width", FIELD.width)
+
+
 def _px(length: float, width: float, x: float, y: float) -> tuple[float, float]:
     return ((x + length / 2 + 5) * SCALE, (width / 2 + 5 - y) * SCALE)
 
 
 def heat_and_path(header: dict, cycles: list[dict]) -> str:
-    length = header.get("field", {}).get("length", 105.0)
-    width = header.get("field", {}).get("width", 68.0)
+    length, width = _dimensions(header)
     cell = 5.0
     counts: Counter = Counter()
     for c in cycles:
@@ -108,8 +117,7 @@ def heat_and_path(header: dict, cycles: list[dict]) -> str:
 
 
 def trajectories(header: dict, cycles: list[dict]) -> str:
-    length = header.get("field", {}).get("length", 105.0)
-    width = header.get("field", {}).get("width", 68.0)
+    length, width = _dimensions(header)
     tracks: dict[tuple[str, int], list[str]] = {}
     for c in cycles[::5]:
         for p in c["players"]:

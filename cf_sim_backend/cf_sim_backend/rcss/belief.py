@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass, field
 
 from cf_lang.ontology import (
+    FIELD,
     AbsolutePositioning,
     Ball,
     Game,
@@ -317,8 +318,8 @@ class Belief:
         values = {n: float(self.param(n, getattr(Params, n))) for n in names}
         for n in ("goal_pause_cycles", "auto_kick_off_cycles", "set_piece_timeout"):
             values[n] = int(values[n])
-        values["field_length"], values["field_width"] = 105.0, 68.0
-        values["goal_width"] = float(self.server.get("goal_width", 14.02))
+        values["field_length"], values["field_width"] = FIELD.length, FIELD.width  # fixed in rcssserver
+        values["goal_width"] = float(self.server.get("goal_width", FIELD.goal_width))
         values["catchable_area"] = float(self.server.get("catchable_area_l", 1.2))
         values["half_cycles"] = int(float(self.server.get("half_time", 300)) * 10)
         return Params(**values)
