@@ -134,7 +134,7 @@ def entry_form(entry: Entry) -> list:
     ]
 
 
-class Session:
+class TcpAgent:
     """One TCP agent: its protocol state and what it holds in the framework."""
 
     def __init__(
@@ -301,7 +301,7 @@ class Session:
         self.send(form("bye"))
         return False
 
-    _COMMANDS: dict[str, Callable[[Session, dict], bool | Awaitable[bool]]] = {
+    _COMMANDS: dict[str, Callable[[TcpAgent, dict], bool | Awaitable[bool]]] = {
         "hello": _hello,
         "register": _register,
         "lookup": _lookup,
@@ -384,7 +384,7 @@ class Gateway:
         self.bus = bus
         self.log = log
         self.limits = Limits(max_bytes=config.max_line_bytes, max_depth=config.max_depth)
-        self.sessions: dict[str, Session] = {}
+        self.sessions: dict[str, TcpAgent] = {}
         self.connections = 0
         self.relayed = 0
         self.slow_disconnects = 0
@@ -470,7 +470,7 @@ class _Connection(asyncio.Protocol):
         self.gateway = gateway
         self.config = gateway.config
         self.transport: asyncio.Transport | None = None
-        self.session: Session | None = None
+        self.session: TcpAgent | None = None
         self.buffer = bytearray()
         self.busy = False  # a command waits for the ComMAg; later lines wait for it
         self.eof = False
@@ -498,7 +498,7 @@ class _Connection(asyncio.Protocol):
         gateway.connections += 1
         self.counted = True
         peer = transport.get_extra_info("peername")[:2]
-        self.session = Session(gateway, peer, self.send, self.deliver)
+        self.session = TcpAgent(gateway, peer, self.send, self.deliver)
         self.loop = asyncio.get_running_loop()
         # A second handle on the socket, ours, so that inbox samples arriving on the ROS
         # executor's thread are written at once, without waking the loop (see deliver).

@@ -5,15 +5,7 @@ Positions are in the player's own frame (x towards the opponents' goal).
 
 from __future__ import annotations
 
-from enum import StrEnum
-
-
-class Role(StrEnum):
-    GOALKEEPER = "goalkeeper"
-    DEFENDER = "defender"
-    MIDFIELDER = "midfielder"
-    FORWARD = "forward"
-
+from cf_lang.ontology import Role
 
 # 4-3-3 for eleven; smaller teams take the first n entries of this order.
 _FORMATION: dict[int, tuple[Role, float, float]] = {

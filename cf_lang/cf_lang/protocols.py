@@ -26,7 +26,7 @@ from .errors import ProtocolError
 P = Performative
 
 
-class Role(StrEnum):
+class ConversationRole(StrEnum):
     INITIATOR = "initiator"
     RESPONDER = "responder"
 
@@ -44,7 +44,7 @@ class ProtocolSpec:
     opening: frozenset[Performative]
     moves: dict[str, dict[Performative, str]]
     """state -> performative -> next state; who may send it is in ``senders``."""
-    senders: dict[Performative, Role]
+    senders: dict[Performative, ConversationRole]
 
 
 _ANSWERS = {P.AGREE: "agreed", P.REFUSE: "refused", P.FAILURE: "failed", P.NOT_UNDERSTOOD: "not-understood"}
@@ -59,12 +59,12 @@ REQUEST = ProtocolSpec(
         "agreed": {P.INFORM: "done", P.FAILURE: "failed"},
     },
     senders={
-        P.REQUEST: Role.INITIATOR,
-        P.AGREE: Role.RESPONDER,
-        P.REFUSE: Role.RESPONDER,
-        P.FAILURE: Role.RESPONDER,
-        P.NOT_UNDERSTOOD: Role.RESPONDER,
-        P.INFORM: Role.RESPONDER,
+        P.REQUEST: ConversationRole.INITIATOR,
+        P.AGREE: ConversationRole.RESPONDER,
+        P.REFUSE: ConversationRole.RESPONDER,
+        P.FAILURE: ConversationRole.RESPONDER,
+        P.NOT_UNDERSTOOD: ConversationRole.RESPONDER,
+        P.INFORM: ConversationRole.RESPONDER,
     },
 )
 
@@ -77,13 +77,13 @@ QUERY = ProtocolSpec(
         "agreed": {P.INFORM: "done", P.FAILURE: "failed"},
     },
     senders={
-        P.QUERY_REF: Role.INITIATOR,
-        P.QUERY_IF: Role.INITIATOR,
-        P.AGREE: Role.RESPONDER,
-        P.REFUSE: Role.RESPONDER,
-        P.FAILURE: Role.RESPONDER,
-        P.NOT_UNDERSTOOD: Role.RESPONDER,
-        P.INFORM: Role.RESPONDER,
+        P.QUERY_REF: ConversationRole.INITIATOR,
+        P.QUERY_IF: ConversationRole.INITIATOR,
+        P.AGREE: ConversationRole.RESPONDER,
+        P.REFUSE: ConversationRole.RESPONDER,
+        P.FAILURE: ConversationRole.RESPONDER,
+        P.NOT_UNDERSTOOD: ConversationRole.RESPONDER,
+        P.INFORM: ConversationRole.RESPONDER,
     },
 )
 
@@ -106,13 +106,13 @@ SUBSCRIBE = ProtocolSpec(
         "cancelling": {P.INFORM: "cancelled", P.FAILURE: "cancelled"},
     },
     senders={
-        P.SUBSCRIBE: Role.INITIATOR,
-        P.CANCEL: Role.INITIATOR,
-        P.AGREE: Role.RESPONDER,
-        P.REFUSE: Role.RESPONDER,
-        P.FAILURE: Role.RESPONDER,
-        P.NOT_UNDERSTOOD: Role.RESPONDER,
-        P.INFORM: Role.RESPONDER,
+        P.SUBSCRIBE: ConversationRole.INITIATOR,
+        P.CANCEL: ConversationRole.INITIATOR,
+        P.AGREE: ConversationRole.RESPONDER,
+        P.REFUSE: ConversationRole.RESPONDER,
+        P.FAILURE: ConversationRole.RESPONDER,
+        P.NOT_UNDERSTOOD: ConversationRole.RESPONDER,
+        P.INFORM: ConversationRole.RESPONDER,
     },
 )
 
@@ -133,7 +133,7 @@ class Conversation:
     def __init__(
         self,
         spec: ProtocolSpec,
-        role: Role,
+        role: ConversationRole,
         *,
         me: AgentId,
         peer: AgentId,
@@ -158,7 +158,7 @@ class Conversation:
     def finished(self) -> bool:
         return self.state in TERMINAL
 
-    def _move(self, performative: Performative, sender_role: Role) -> str:
+    def _move(self, performative: Performative, sender_role: ConversationRole) -> str:
         allowed = self.spec.moves.get(self.state, {})
         nxt = allowed.get(performative)
         if nxt is None or self.spec.senders.get(performative) is not sender_role:
@@ -185,7 +185,7 @@ class Conversation:
             conversation_id=self.conversation_id,
             reply_with=reply_with,
             in_reply_to=base.reply_with if base is not None else None,
-            reply_by=self.reply_by if self.role is Role.INITIATOR and perf in self.spec.opening else None,
+            reply_by=self.reply_by if self.role is ConversationRole.INITIATOR and perf in self.spec.opening else None,
         )
         self._reply_with = reply_with
         self.state = nxt
@@ -202,11 +202,13 @@ class Conversation:
             raise ProtocolError(
                 f"message belongs to conversation {msg.conversation_id!r}, not {self.conversation_id!r}"
             )
-        if self.role is Role.INITIATOR and msg.in_reply_to is not None and self._reply_with is not None:
+        if self.role is ConversationRole.INITIATOR and msg.in_reply_to is not None and self._reply_with is not None:
             sent = {m.reply_with for m in self.history if m.sender == self.me}
             if msg.in_reply_to not in sent:
                 raise ProtocolError(f"in-reply-to {msg.in_reply_to!r} answers nothing we sent")
-        peer_role = Role.RESPONDER if self.role is Role.INITIATOR else Role.INITIATOR
+        peer_role = (
+            ConversationRole.RESPONDER if self.role is ConversationRole.INITIATOR else ConversationRole.INITIATOR
+        )
         self.state = self._move(msg.performative, peer_role)
         self._last_received = msg
         self.history.append(msg)
@@ -218,7 +220,7 @@ class Conversation:
         Only the initiator waits; a subscription that was agreed waits for
         nothing, so it never times out here.
         """
-        if self.finished or self.deadline is None or self.role is not Role.INITIATOR:
+        if self.finished or self.deadline is None or self.role is not ConversationRole.INITIATOR:
             return False
         if self.state in ("subscribed",):
             return False
@@ -255,7 +257,7 @@ def initiate(
     perf = Performative(performative) if performative else _DEFAULT_OPENING[spec.name]
     conv = Conversation(
         spec,
-        Role.INITIATOR,
+        ConversationRole.INITIATOR,
         me=me,
         peer=peer,
         conversation_id=conversation_id or new_conversation_id(me.name),
@@ -277,7 +279,12 @@ def respond(msg: AclMessage, *, me: AgentId, now: float) -> Conversation:
     if not msg.conversation_id:
         raise ProtocolError("an opening message needs a :conversation-id")
     conv = Conversation(
-        spec, Role.RESPONDER, me=me, peer=msg.sender, conversation_id=msg.conversation_id, reply_by=msg.reply_by
+        spec,
+        ConversationRole.RESPONDER,
+        me=me,
+        peer=msg.sender,
+        conversation_id=msg.conversation_id,
+        reply_by=msg.reply_by,
     )
     conv.receive(msg, now=now)
     return conv

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from cf_lang.ontology import actions as act
 from cf_sim_backend.perception import to_own_frame
-from cf_sim_backend.world import Player, Side, World, direction_deg, distance, norm_deg
+from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, norm_deg
 
 Command = tuple  # ("dash", power, dir) | ("turn", moment) | ("kick", power, dir) | ...
 TIMEOUT_CYCLES = 300
@@ -31,7 +31,7 @@ class Step:
     reason: str = ""
 
 
-def _turn_moment(world: World, me: Player, angle: float) -> float:
+def _turn_moment(world: World, me: SimPlayer, angle: float) -> float:
     """The turn moment that turns the body by ``angle`` degrees at the current speed."""
     speed = math.hypot(me.vx, me.vy)
     return max(-180.0, min(180.0, angle * (1.0 + world.params.inertia_moment * speed)))
@@ -41,14 +41,14 @@ def _absolute(side: Side, x: float, y: float) -> tuple[float, float]:
     return to_own_frame(side, x, y)  # turning by 180 degrees is its own inverse
 
 
-def _go(world: World, me: Player, x: float, y: float, power: float) -> Command:
+def _go(world: World, me: SimPlayer, x: float, y: float, power: float) -> Command:
     angle = norm_deg(direction_deg(me.x, me.y, x, y) - me.body)
     if abs(angle) > 12.0:
         return ("turn", _turn_moment(world, me, angle))
     return ("dash", power)
 
 
-def kick_power_for(world: World, me: Player, dist: float) -> float:
+def kick_power_for(world: World, me: SimPlayer, dist: float) -> float:
     """Power that makes the ball roll about ``dist`` metres (the ball decays by 0.94 per cycle)."""
     speed = dist * (1 - world.params.ball_decay)
     rate = world.params.kick_power_rate * 0.85
@@ -63,13 +63,13 @@ class Skill:
     def __init__(self) -> None:
         self.cycles = 0
 
-    def step(self, world: World, me: Player) -> Step:
+    def step(self, world: World, me: SimPlayer) -> Step:
         self.cycles += 1
         if self.cycles > TIMEOUT_CYCLES:
             return Step([], "failed", f"{self.name} did not finish in {TIMEOUT_CYCLES} cycles")
         return self._step(world, me)
 
-    def _step(self, world: World, me: Player) -> Step:
+    def _step(self, world: World, me: SimPlayer) -> Step:
         raise NotImplementedError
 
 
@@ -80,7 +80,7 @@ class Once(Skill):
         super().__init__()
         self.command, self.name = command, name
 
-    def _step(self, world: World, me: Player) -> Step:
+    def _step(self, world: World, me: SimPlayer) -> Step:
         return Step([self.command], "done")
 
 
@@ -91,7 +91,7 @@ class MoveTo(Skill):
         super().__init__()
         self.x, self.y, self.speed, self.tolerance = x, y, speed, tolerance
 
-    def _step(self, world: World, me: Player) -> Step:
+    def _step(self, world: World, me: SimPlayer) -> Step:
         if distance(me.x, me.y, self.x, self.y) <= self.tolerance:
             return Step([], "done")
         return Step([_go(world, me, self.x, self.y, self.speed)])
@@ -104,7 +104,7 @@ class TurnTo(Skill):
         super().__init__()
         self.target, self.heading = target, heading
 
-    def _step(self, world: World, me: Player) -> Step:
+    def _step(self, world: World, me: SimPlayer) -> Step:
         heading = self.heading if self.target is None else direction_deg(me.x, me.y, *self.target)
         angle = norm_deg(heading - me.body)
         if abs(angle) <= 5.0:
@@ -112,7 +112,7 @@ class TurnTo(Skill):
         return Step([("turn", _turn_moment(world, me, angle))])
 
 
-def _chase_ball(world: World, me: Player) -> Step:
+def _chase_ball(world: World, me: SimPlayer) -> Step:
     """Run to where the ball will be when we could get there (a few cycles ahead)."""
     b = world.ball
     if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
@@ -126,7 +126,7 @@ def _chase_ball(world: World, me: Player) -> Step:
 class Intercept(Skill):
     name = "intercept"
 
-    def _step(self, world: World, me: Player) -> Step:
+    def _step(self, world: World, me: SimPlayer) -> Step:
         return _chase_ball(world, me)
 
 
@@ -138,7 +138,7 @@ class KickTo(Skill):
         self.name, self.x, self.y, self.power, self.approach = name, x, y, power, approach
         self.kicked = False
 
-    def _step(self, world: World, me: Player) -> Step:
+    def _step(self, world: World, me: SimPlayer) -> Step:
         b = world.ball
         if self.kicked:
             return Step([], "done")
@@ -161,7 +161,7 @@ class Dribble(Skill):
         super().__init__()
         self.x, self.y, self.speed = x, y, speed
 
-    def _step(self, world: World, me: Player) -> Step:
+    def _step(self, world: World, me: SimPlayer) -> Step:
         b = world.ball
         if distance(b.x, b.y, self.x, self.y) <= 1.5:
             return Step([], "done")
@@ -171,7 +171,7 @@ class Dribble(Skill):
         return _chase_ball(world, me)
 
 
-def skill_for(method: str, action, side: Side, world: World, me: Player) -> Skill:
+def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> Skill:
     """The skill that carries out ``action`` (an ontology model); raises SkillError if it cannot start."""
     prm = world.params
     opp_goal = (side.sign * prm.field_length / 2, 0.0)

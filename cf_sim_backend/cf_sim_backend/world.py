@@ -68,7 +68,7 @@ class Params:
 
 
 @dataclass
-class Ball:
+class SimBall:
     x: float = 0.0
     y: float = 0.0
     vx: float = 0.0
@@ -76,7 +76,7 @@ class Ball:
 
 
 @dataclass
-class Player:
+class SimPlayer:
     side: Side
     number: int
     x: float = 0.0
@@ -104,15 +104,15 @@ class World:
     time: int = 0
     mode: str = "before_kick_off"  # rcssserver play mode names, with _l/_r
     score: dict[Side, int] = field(default_factory=lambda: {Side.LEFT: 0, Side.RIGHT: 0})
-    ball: Ball = field(default_factory=Ball)
-    players: dict[tuple[Side, int], Player] = field(default_factory=dict)
+    ball: SimBall = field(default_factory=SimBall)
+    players: dict[tuple[Side, int], SimPlayer] = field(default_factory=dict)
     team_names: dict[Side, str] = field(default_factory=lambda: {Side.LEFT: "left", Side.RIGHT: "right"})
     half: int = 1
     last_touch: tuple[Side, int] | None = None
     mode_since: int = 0
     kick_off_side: Side = Side.LEFT
 
-    def player(self, side: Side, number: int) -> Player:
+    def player(self, side: Side, number: int) -> SimPlayer:
         return self.players[(side, number)]
 
 
@@ -162,9 +162,9 @@ def world_from_snapshot(snap: dict, params: Params | None = None) -> World:
     w = World(params=params or Params())
     w.time, w.mode = int(snap["t"]), str(snap["mode"])
     w.score = {Side.LEFT: int(snap["score"][0]), Side.RIGHT: int(snap["score"][1])}
-    w.ball = Ball(*(float(v) for v in snap["ball"]))
+    w.ball = SimBall(*(float(v) for v in snap["ball"]))
     for side, number, x, y, vx, vy, body, neck, stamina, goalie in snap["players"]:
-        p = Player(
+        p = SimPlayer(
             side=Side(side),
             number=int(number),
             x=x,

@@ -17,7 +17,7 @@ from cf_lang.ontology import actions as act
 from cf_lang.ontology.positioning import AbsolutePositioning
 from cf_sim_backend.rcss.belief import PLAYER_MEMORY, UNSURE, Belief, sim_mode, world_state
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse, well_formed
-from cf_sim_backend.rcss.session import Session, rcss_command
+from cf_sim_backend.rcss.session import PlayerSession, rcss_command
 from cf_sim_backend.rcss.trace import belief_errors, read_trace
 from cf_sim_backend.skills import Intercept, KickTo, MoveTo, Skill, skill_for
 from cf_sim_backend.world import Side
@@ -211,9 +211,9 @@ class TwoBodyCommands(Skill):
         )
 
 
-def replay_acting(skills: list[Skill]) -> tuple[dict[int, list[str]], Session]:
+def replay_acting(skills: list[Skill]) -> tuple[dict[int, list[str]], PlayerSession]:
     """Feed the synch trace to a session; at each (think) run one step of the current skill."""
-    session, sent = Session("PyTest"), {}
+    session, sent = PlayerSession("PyTest"), {}
     queue = list(skills)
     for direction, msg in read_trace(SYNCH):
         if direction != "P<":
@@ -269,7 +269,7 @@ def test_skills_from_the_framework_language_run_on_the_belief():
 
 @pytest.mark.parametrize("data", [b"\xff\xfe(see", b"(see 3 ((f c) 1", b"))(", b"", b"(" * 100 + b")" * 100])
 def test_unreadable_datagrams_are_counted_and_change_nothing(data):
-    session = Session("CF")
+    session = PlayerSession("CF")
     session.receive(b"(init l 3 before_kick_off)\0")
     assert session.receive(data) == "bad"
     assert session.stats["bad_messages"] == 1 and session.belief.number == 3 and session.belief.errors
@@ -277,7 +277,7 @@ def test_unreadable_datagrams_are_counted_and_change_nothing(data):
 
 
 def test_server_errors_are_kept_and_the_hello_says_who_we_are():
-    session = Session("CF", goalie=True)
+    session = PlayerSession("CF", goalie=True)
     assert session.hello() == "(init CF (version 19) (goalie))" and well_formed(session.hello())
     assert session.reconnect(4) == "(reconnect CF 4)" and session.belief.number == 4
     session.receive(b"(error no_more_player_or_goalie_or_illegal_client_version)\0")
@@ -297,7 +297,7 @@ def test_a_see_is_expected_every_second_cycle_at_normal_width():
 
 
 def test_commands_the_server_executed_are_counted_from_its_counters_also_before_kick_off():
-    session = Session("CF")
+    session = PlayerSession("CF")
     session.receive(b"(init l 3 before_kick_off)\0")
     for text in (
         "(sense_body 0 (kick 0) (dash 0) (turn 0) (move 0))",
@@ -309,7 +309,7 @@ def test_commands_the_server_executed_are_counted_from_its_counters_also_before_
 
 
 def _dead_reckoned_errors(our_turn: float | None) -> list[float]:
-    """Self position error at every sense_body (before that cycle's see) of the synch trace.
+    """OwnPlayer position error at every sense_body (before that cycle's see) of the synch trace.
 
     With ``our_turn``, the adapter also sends that turn after every think, as a decision might;
     a replay, like a loaded server that got it late, never executes it.

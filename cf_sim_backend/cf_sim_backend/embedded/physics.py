@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import random
 
-from cf_sim_backend.world import Player, World, direction_deg, distance, norm_deg
+from cf_sim_backend.world import SimPlayer, World, direction_deg, distance, norm_deg
 
 BODY_COMMANDS = ("dash", "turn", "kick", "catch", "tackle", "move")
 STOPPED_MODES = ("before_kick_off", "half_time", "time_over")
@@ -35,15 +35,15 @@ def _cap(vx: float, vy: float, limit: float) -> tuple[float, float]:
     return vx, vy
 
 
-def ball_distance(world: World, p: Player) -> float:
+def ball_distance(world: World, p: SimPlayer) -> float:
     return distance(p.x, p.y, world.ball.x, world.ball.y)
 
 
-def kickable(world: World, p: Player) -> bool:
+def kickable(world: World, p: SimPlayer) -> bool:
     return ball_distance(world, p) <= world.params.kickable_distance
 
 
-def dash(world: World, p: Player, power: float, direction: float = 0.0) -> None:
+def dash(world: World, p: SimPlayer, power: float, direction: float = 0.0) -> None:
     prm = world.params
     power = _clamp(power, -100.0, 100.0)
     cost = abs(power) * (2.0 if power < 0 else 1.0)
@@ -54,18 +54,18 @@ def dash(world: World, p: Player, power: float, direction: float = 0.0) -> None:
     p.vx, p.vy = _cap(p.vx + accel * math.cos(angle), p.vy + accel * math.sin(angle), prm.player_speed_max)
 
 
-def turn(world: World, p: Player, moment: float) -> None:
+def turn(world: World, p: SimPlayer, moment: float) -> None:
     moment = _clamp(moment, -world.params.max_moment, world.params.max_moment)
     speed = math.hypot(p.vx, p.vy)
     p.body = norm_deg(p.body + moment / (1.0 + world.params.inertia_moment * speed))
 
 
-def turn_neck(world: World, p: Player, angle: float) -> None:
+def turn_neck(world: World, p: SimPlayer, angle: float) -> None:
     limit = world.params.max_neck_angle
     p.neck = _clamp(p.neck + angle, -limit, limit)
 
 
-def kick(world: World, p: Player, power: float, direction: float) -> bool:
+def kick(world: World, p: SimPlayer, power: float, direction: float) -> bool:
     """Kick the ball if it is kickable; return whether it was touched."""
     prm = world.params
     if not kickable(world, p):
@@ -83,7 +83,7 @@ def kick(world: World, p: Player, power: float, direction: float) -> bool:
     return True
 
 
-def catch(world: World, p: Player, direction: float) -> bool:
+def catch(world: World, p: SimPlayer, direction: float) -> bool:
     """A goalkeeper in its own penalty area catches a ball in reach in that direction."""
     prm = world.params
     if not p.goalie or not in_own_penalty_area(world, p):
@@ -97,7 +97,7 @@ def catch(world: World, p: Player, direction: float) -> bool:
     return True
 
 
-def tackle(world: World, p: Player, power: float) -> bool:
+def tackle(world: World, p: SimPlayer, power: float) -> bool:
     """Push the ball away in the body direction if it is close in front."""
     prm = world.params
     d = ball_distance(world, p)
@@ -111,7 +111,7 @@ def tackle(world: World, p: Player, power: float) -> bool:
     return True
 
 
-def in_own_penalty_area(world: World, p: Player) -> bool:
+def in_own_penalty_area(world: World, p: SimPlayer) -> bool:
     prm = world.params
     own_goal_x = -p.side.sign * prm.field_length / 2
     return abs(p.x - own_goal_x) <= prm.penalty_area_length and abs(p.y) <= prm.penalty_area_width / 2

@@ -6,7 +6,7 @@ import random
 
 from cf_sim_backend.embedded import physics, referee
 from cf_sim_backend.embedded.physics import CommandError
-from cf_sim_backend.world import Ball, Params, Player, Side, World, direction_deg
+from cf_sim_backend.world import Params, Side, SimBall, SimPlayer, World, direction_deg
 
 _ARITY = {
     "dash": (1, 2),
@@ -41,7 +41,7 @@ class Simulator:
             if not 0 <= size <= 11:
                 raise ValueError("team sizes must be 0..11")
             for n in range(1, size + 1):
-                self.world.players[(side, n)] = Player(
+                self.world.players[(side, n)] = SimPlayer(
                     side=side, number=n, goalie=(n == 1), stamina=self.world.params.stamina_max
                 )
         referee.place_for_kick_off(self.world, Side.LEFT)
@@ -140,14 +140,14 @@ class Simulator:
             if name == "move":
                 self._move(self.world.players[key], *args)
 
-    def _move(self, p: Player, x: float, y: float) -> None:
+    def _move(self, p: SimPlayer, x: float, y: float) -> None:
         """Place a player in its own half (x given for the left side, as rcssserver's move)."""
         half = self.world.params
         x = max(-half.field_length / 2, min(-0.5, x)) * p.side.sign
         y = max(-half.field_width / 2, min(half.field_width / 2, y)) * p.side.sign
         p.x, p.y, p.vx, p.vy = x, y, 0.0, 0.0
 
-    def _apply(self, p: Player, name: str, args: tuple[float, ...]) -> str | None:
+    def _apply(self, p: SimPlayer, name: str, args: tuple[float, ...]) -> str | None:
         w = self.world
         if name == "dash":
             physics.dash(w, p, *args)
@@ -164,7 +164,7 @@ class Simulator:
             return f"catch {p.side.value} {p.number}"
         return None
 
-    def _touch(self, p: Player, name: str, args: tuple[float, ...]) -> str | None:
+    def _touch(self, p: SimPlayer, name: str, args: tuple[float, ...]) -> str | None:
         w = self.world
         piece_side = referee.set_piece_side(w)
         if piece_side is not None and piece_side is not p.side:
@@ -194,7 +194,7 @@ class Simulator:
     def snapshot(self) -> dict:
         """The true state of this cycle as plain data (the match log's and the state topic's format)."""
         w = self.world
-        b: Ball = w.ball
+        b: SimBall = w.ball
         return {
             "t": w.time,
             "mode": w.mode,

@@ -35,9 +35,7 @@ from cf_lang.ontology import (
 from cf_sim_backend.perception import relative_mode, to_own_frame, yaw_in_own_frame
 from cf_sim_backend.rcss.localise import localise
 from cf_sim_backend.rcss.protocol import read_see
-from cf_sim_backend.world import Ball as SimBall
-from cf_sim_backend.world import Params, Side, World, norm_deg
-from cf_sim_backend.world import Player as SimPlayer
+from cf_sim_backend.world import Params, Side, SimBall, SimPlayer, World, norm_deg
 
 PLAYER_MEMORY = 30  # cycles a player not seen again is still reported
 BALL_MEMORY = 100  # cycles the ball's estimate is still reported
@@ -89,7 +87,7 @@ class Track:
 
 
 @dataclass
-class Self:
+class OwnPlayer:
     """The player's own state, server frame."""
 
     x: float = 0.0
@@ -125,7 +123,7 @@ class Belief:
     server: dict[str, float | str] = field(default_factory=dict)
     player_types: dict[int, dict[str, float | str]] = field(default_factory=dict)
     type_id: int = 0
-    me: Self = field(default_factory=Self)
+    me: OwnPlayer = field(default_factory=OwnPlayer)
     ball: Track | None = None
     players: dict[tuple[str, int], Track] = field(default_factory=dict)  # (team name, number)
     anonymous: list[tuple[str | None, Track]] = field(default_factory=list)
@@ -350,7 +348,7 @@ class Belief:
         return w
 
 
-def _velocity(d: float, a: float, dchg: float, dirchg: float, head: float, me: Self) -> tuple[float, float]:
+def _velocity(d: float, a: float, dchg: float, dirchg: float, head: float, me: OwnPlayer) -> tuple[float, float]:
     """An object's absolute velocity (server frame, m/cycle) from the see's distance and direction changes."""
     rx, ry = math.cos(a), math.sin(a)
     w = math.radians(dirchg) * d

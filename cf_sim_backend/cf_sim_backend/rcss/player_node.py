@@ -35,7 +35,7 @@ from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.given_parameters import parameters_for
 from cf_commag.guarded import GuardedNode
 from cf_sim_backend.rcss.belief import world_state
-from cf_sim_backend.rcss.session import Session
+from cf_sim_backend.rcss.session import PlayerSession
 from cf_sim_backend.services import ActionService, PerceptionService
 from cf_sim_backend.world import Side
 
@@ -70,7 +70,7 @@ class RcssPlayerNode(GuardedNode, Node):
         for name, (default, description) in PARAMS.items():
             self.declare_parameter(name, default, ParameterDescriptor(description=description))
         self.p = {name: self.get_parameter(name).value for name in PARAMS}
-        self.session = Session(str(self.p["team"]), bool(self.p["goalie"]), int(self.p["version"]))
+        self.session = PlayerSession(str(self.p["team"]), bool(self.p["goalie"]), int(self.p["version"]))
         self.agents: list[Agent] = []
         self.perception: PerceptionService | None = None  # once the server has given us a number
         self.action: ActionService | None = None

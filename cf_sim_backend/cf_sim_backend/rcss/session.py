@@ -1,6 +1,6 @@
 """One player's conversation with rcssserver (ROS-free): the belief, the skill in progress, the commands it sends.
 
-The session turns server messages into the :class:`Belief` and, once per cycle (:meth:`Session.act`),
+The session turns server messages into the :class:`Belief` and, once per cycle (:meth:`PlayerSession.act`),
 the current skill's step into rcssserver commands: at most one body command per cycle (the server
 ignores extras), plus ``turn_neck``. Skills are the embedded simulator's (:mod:`skills`), run on
 the belief, so the same Framework Language actions mean the same on both back-ends.
@@ -58,7 +58,7 @@ class Acted:
 
 
 @dataclass
-class Session:
+class PlayerSession:
     """A player's session. Parameters: team name, goalie, protocol version."""
 
     team: str

@@ -57,7 +57,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     return ap.parse_args(argv)
 
 
-class Team:
+class TeamProcesses:
     """The processes of one team, started in order and stopped together."""
 
     def __init__(self, args: argparse.Namespace):
@@ -160,7 +160,7 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of ``ros2 run cf_sim_backend rcss_team``."""
     # ros2 launch adds --ros-args ...: they are ROS's, not ours.
     args = parse_args(remove_ros_args(sys.argv)[1:] if argv is None else argv)
-    team = Team(args)
+    team = TeamProcesses(args)
 
     def interrupt(signum, frame):
         raise KeyboardInterrupt
