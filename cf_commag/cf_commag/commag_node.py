@@ -9,7 +9,7 @@ from pathlib import Path
 
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import Field
 from rcl_interfaces.msg import ParameterDescriptor
 from rclpy.executors import ExternalShutdownException
 from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
@@ -22,6 +22,7 @@ from . import store
 from .convert import event_to_msg, to_msg, to_query, to_record
 from .guarded import GuardedNode
 from .launcher import Launcher, LaunchPolicy, workspace_roots
+from .params import NodeParams
 from .records import EventKind, State
 from .registry import Event, Registry, RegistryConfig
 from .transport.qos import EVENTS_QOS, SERVICE_QOS, SNAPSHOT_QOS
@@ -39,10 +40,8 @@ def _ros_home() -> Path:
     return Path(os.environ.get("ROS_HOME", Path.home() / ".ros"))
 
 
-class CommagConfig(BaseModel):
+class CommagConfig(NodeParams):
     """The ComMAg's parameters, read once in on_configure."""
-
-    model_config = ConfigDict(frozen=True, extra="forbid")
 
     default_lease: float = Field(1.0, gt=0, description="lease (s) for components that do not ask for one")
     startup_grace: float = Field(5.0, gt=0, description="seconds a relaunched component has to re-register")
@@ -80,11 +79,7 @@ class CommagNode(GuardedNode, LifecycleNode):
 
     def __init__(self, node_name: str = "commag", **kwargs):
         super().__init__(node_name, **kwargs)
-        for name, info in CommagConfig.model_fields.items():
-            default = info.default
-            if isinstance(default, tuple):
-                default = list(default) or [""]
-            self.declare_parameter(name, default, ParameterDescriptor(description=info.description or ""))
+        CommagConfig.declare(self)
         self.declare_parameter("autostart", True, ParameterDescriptor(description="configure and activate at start"))
         self._active = False
         self._registry: Registry | None = None
@@ -99,20 +94,11 @@ class CommagNode(GuardedNode, LifecycleNode):
 
     # ---- lifecycle ---------------------------------------------------------
 
-    def _read_config(self) -> CommagConfig:
-        values = {}
-        for name, info in CommagConfig.model_fields.items():
-            value = self.get_parameter(name).value
-            if isinstance(info.default, tuple):
-                value = tuple(v for v in (value or []) if v)
-            values[name] = value
-        return CommagConfig(**values)
-
     def on_configure(self, state: LifecycleState) -> TransitionCallbackReturn:
         try:
-            cfg = self._read_config()
-        except ValidationError as exc:
-            self.get_logger().error(f"invalid parameters: {exc}")
+            cfg = CommagConfig.read(self)
+        except ValueError as exc:
+            self.get_logger().error(str(exc))
             return TransitionCallbackReturn.FAILURE
         self._cfg = cfg
         roots = cfg.allowed_roots or workspace_roots()

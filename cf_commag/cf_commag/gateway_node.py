@@ -8,9 +8,10 @@ import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Literal
 
 import rclpy
-from rcl_interfaces.msg import ParameterDescriptor
+from pydantic import Field
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import String
@@ -22,6 +23,7 @@ from cf_interfaces.srv import Deregister, Lookup, Register
 from .convert import directory_from_msg, entry_from_msg, query_to_request, to_msg
 from .gateway import Gateway, GatewayConfig, form
 from .guarded import GuardedNode
+from .params import NodeParams
 from .records import Entry, Query, Record
 from .registry import Result
 from .renewer import Renewer
@@ -29,27 +31,35 @@ from .runtime import make_executor
 from .transport.outbox import Outbox, inbox_topic, sample_text
 from .transport.qos import EVENTS_QOS, INBOX_QOS, SERVICE_QOS, SNAPSHOT_QOS
 
-_PARAMS = {
-    "host": ("127.0.0.1", "address to listen on (loopback unless told otherwise)"),
-    "port": (7700, "TCP port; 0 picks a free one (reported in the log and in port_file)"),
-    "token": ("", "if set, agents must give it in hello"),
-    "max_connections": (256, "connections served at once"),
-    "max_line_bytes": (65536, "longest line accepted; longer ones close the connection"),
-    "max_depth": (32, "deepest S-expression nesting accepted"),
-    "max_queue": (10000, "lines queued for one agent before it is disconnected as too slow"),
-    "max_pending_bytes": (4 << 20, "unsent bytes for one agent before it is disconnected as too slow"),
-    "default_lease": (2.0, "lease (s) for agents that do not ask for one"),
-    "hello_timeout": (10.0, "seconds a new connection has to say hello"),
-    "commag": ("/commag", "the ComMAg's node name"),
-    "port_file": ("", "if set, the bound port is written to this file"),
-    "executor": ("events", "rclpy executor: events (rclpy.experimental.EventsExecutor) or single"),
-}
+
+class GatewayParams(NodeParams):
+    """The gateway's parameters; all but the last three make its GatewayConfig."""
+
+    host: str = Field("127.0.0.1", description="address to listen on (loopback unless told otherwise)")
+    port: int = Field(
+        7700, ge=0, le=65535, description="TCP port; 0 picks a free one (reported in the log and in port_file)"
+    )
+    token: str = Field("", description="if set, agents must give it in hello")
+    max_connections: int = Field(256, ge=1, description="connections served at once")
+    max_line_bytes: int = Field(65536, ge=256, description="longest line accepted; longer ones close the connection")
+    max_depth: int = Field(32, ge=2, description="deepest S-expression nesting accepted")
+    max_queue: int = Field(10000, ge=1, description="lines queued for one agent before it is disconnected as too slow")
+    max_pending_bytes: int = Field(
+        4 << 20, ge=1024, description="unsent bytes for one agent before it is disconnected as too slow"
+    )
+    default_lease: float = Field(2.0, gt=0, description="lease (s) for agents that do not ask for one")
+    hello_timeout: float = Field(10.0, gt=0, description="seconds a new connection has to say hello")
+    commag: str = Field("/commag", description="the ComMAg's node name")
+    port_file: str = Field("", description="if set, the bound port is written to this file")
+    executor: Literal["events", "single"] = Field(
+        "events", description="rclpy executor: events (rclpy.experimental.EventsExecutor) or single"
+    )
 
 
 class GatewayNode(GuardedNode, Node):
     """TCP socket gateway: makes TCP agents full members of the framework.
 
-    Parameters: see _PARAMS (each declared with its description).
+    Parameters: GatewayParams.
     Uses the ComMAg's ``register``/``deregister``/``lookup`` services and
     ``registry``/``events`` topics; publishes to and subscribes on
     ``/cf/agents/<name>/inbox`` for its agents.
@@ -57,11 +67,9 @@ class GatewayNode(GuardedNode, Node):
 
     def __init__(self, **kwargs):
         super().__init__("gateway", **kwargs)
-        for name, (default, description) in _PARAMS.items():
-            self.declare_parameter(name, default, ParameterDescriptor(description=description))
-        p = {name: self.get_parameter(name).value for name in _PARAMS}
-        self.config = GatewayConfig(**{k: v for k, v in p.items() if k in GatewayConfig.__dataclass_fields__})
-        commag = p["commag"]
+        p = GatewayParams.declare_and_read(self)
+        self.config = GatewayConfig(**p.model_dump(exclude={"commag", "port_file", "executor"}))
+        commag = p.commag
         self._register = self.create_client(Register, f"{commag}/register", qos_profile=SERVICE_QOS)
         self._deregister = self.create_client(Deregister, f"{commag}/deregister", qos_profile=SERVICE_QOS)
         self._lookup = self.create_client(Lookup, f"{commag}/lookup", qos_profile=SERVICE_QOS)
@@ -85,8 +93,8 @@ class GatewayNode(GuardedNode, Node):
         self._thread.start()
         port = asyncio.run_coroutine_threadsafe(self.gateway.start(), self.loop).result(timeout=10)
         self.get_logger().info(f"gateway listening on {self.config.host}:{port}")
-        if p["port_file"]:
-            Path(p["port_file"]).write_text(f"{port}\n")
+        if p.port_file:
+            Path(p.port_file).write_text(f"{port}\n")
 
     # ---- thread hand-off ----------------------------------------------------
 

@@ -1,8 +1,9 @@
 """Renewing registrations with the ComMAg: three times per lease, one request in flight per name.
 
 Every Agent renews its own record with it, and the gateway renews the records of the TCP
-agents that showed life within their lease. A renewal left unanswered for a lease (at least
-0.5 s) is asked again: the ComMAg restarted, or the request was lost.
+agents that showed life within their lease. A renewal still unanswered when the next one is
+due is given up and asked again: the ComMAg restarted (a restarted service loses its first
+answers while discovery settles), or the request was lost. Waiting longer would cost the lease.
 """
 
 from __future__ import annotations
@@ -26,10 +27,7 @@ class Renewer:
 
     def due(self, name: str, lease: float, now: float) -> bool:
         """Whether ``name`` should be renewed now."""
-        pending = self._pending.get(name)
-        if pending is not None and not pending[0].done():
-            return now - pending[1] >= max(lease, 0.5)  # unanswered that long: ask again
-        last = self._sent.get(name)
+        last = self._sent.get(name)  # answered or not: the next one is due a third of a lease later
         return last is None or now - last >= _EARLY * lease / RENEWALS_PER_LEASE
 
     def send(self, name: str, request, now: float, on_answer: Callable[[Future], None] | None = None) -> Future | None:

@@ -20,12 +20,12 @@ from __future__ import annotations
 import sys
 import time
 
-from rcl_interfaces.msg import ParameterDescriptor
+from pydantic import Field
 from rclpy.node import Node
 
 from cf_commag.client import Agent, own_launch_command, run
-from cf_commag.given_parameters import parameters_for
 from cf_commag.guarded import GuardedNode, guard
+from cf_commag.params import ComponentParams
 from cf_lang import Exec, LanguageError, parse_expr
 from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.expr import to_sexp
@@ -35,15 +35,14 @@ from cf_lang.sexp import dumps
 from .policy import Decision, cycles_to_ball, decide
 from .requests import ActionRequests
 
-_PARAMS = {
-    "team": ("blue", "team name, as the components register it"),
-    "number": (1, "shirt number"),
-    "team_size": (11, "players in the team (for the formation)"),
-    "name": ("", "agent name (default: <team>_<number>_decision)"),
-    "commag": ("/commag", "the ComMAg's node name"),
-    "lease": (1.0, "lease period (s)"),
-    "standby": (False, "act only when no other decision component of this player is alive"),
-}
+
+class DecisionParams(ComponentParams):
+    team: str = Field("blue", description="team name, as the components register it")
+    number: int = Field(1, ge=1, le=11, description="shirt number")
+    team_size: int = Field(11, ge=1, le=11, description="players in the team (for the formation)")
+    standby: bool = Field(False, description="act only when no other decision component of this player is alive")
+
+
 PERCEPTION_SILENCE = 1.0  # seconds without an inform before the perception provider is replaced
 
 
@@ -52,26 +51,23 @@ def _agent_name(p: dict) -> str:
 
 
 class DecisionNode(GuardedNode, Node):
-    """Decision of one player (service class PlayerDecision). Parameters: _PARAMS."""
+    """Decision of one player (service class PlayerDecision). Parameters: DecisionParams."""
 
     def __init__(self, node_name: str | None = None, **kwargs):
         if node_name is None:  # named after its agent, so that ros2 node/param/... can tell players apart
-            node_name = _agent_name(parameters_for({n: d for n, (d, _) in _PARAMS.items()}, kwargs))
+            node_name = _agent_name(DecisionParams.given(kwargs))
         super().__init__(node_name, **kwargs)
-        for name, (default, description) in _PARAMS.items():
-            self.declare_parameter(name, default, ParameterDescriptor(description=description))
-        p = {name: self.get_parameter(name).value for name in _PARAMS}
-        self.team, self.number, self.team_size = p["team"], int(p["number"]), int(p["team_size"])
-        self.standby = bool(p["standby"])
-        name = _agent_name(p)
+        p = DecisionParams.declare_and_read(self)
+        self.team, self.number, self.team_size, self.standby = p.team, p.number, p.team_size, p.standby
+        name = _agent_name(p.model_dump())
         self.agent = Agent(
             self,
             name=name,
             service_class="PlayerDecision",
             team=self.team,
             player_number=self.number,
-            lease=float(p["lease"]),
-            commag=p["commag"],
+            lease=p.lease,
+            commag=p.commag,
             launch_command=own_launch_command(),
             on_message=self._on_message,
         )

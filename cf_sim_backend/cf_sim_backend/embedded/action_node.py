@@ -15,7 +15,7 @@ from cf_sim_backend.world import World
 
 
 class ActionNode(PlayerComponentNode):
-    """Action of one player (service class Action) on the embedded simulator. Parameters: PLAYER_PARAMS.
+    """Action of one player (service class Action) on the embedded simulator. Parameters: PlayerParams.
 
     Requests are served by :class:`ActionService` (shared with the rcssserver adapter); this node
     steps the current skill every cycle and publishes its commands to the simulator.
@@ -26,7 +26,7 @@ class ActionNode(PlayerComponentNode):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self.commands = self.create_publisher(String, command_topic(self.p["sim"]), COMMAND_QOS)
+        self.commands = self.create_publisher(String, command_topic(self.p.sim), COMMAND_QOS)
         self.action = ActionService(
             self.agent, lambda: (self.number, self.side), lambda: self.world, "the simulator has not started"
         )

@@ -5,32 +5,34 @@ from __future__ import annotations
 import random
 import sys
 
+from pydantic import Field
+
 from cf_commag.runtime import run
-from cf_sim_backend.embedded.player_base import PlayerComponentNode
+from cf_sim_backend.embedded.player_base import PlayerComponentNode, PlayerParams
 from cf_sim_backend.perception import observe
 from cf_sim_backend.services import PerceptionService
 from cf_sim_backend.world import World
 
 
+class PerceptionParams(PlayerParams):
+    noise: float = Field(0.02, ge=0, description="position noise: standard deviation per metre of distance")
+    seed: int = Field(0, description="random seed of the noise")
+
+
 class PerceptionNode(PlayerComponentNode):
-    """Perception of one player (service class WorldModel). Parameters: PLAYER_PARAMS, noise, seed."""
+    """Perception of one player (service class WorldModel). Parameters: PerceptionParams."""
 
     ROLE = "perception"
     SERVICE_CLASS = "WorldModel"
+    PARAMS = PerceptionParams
 
     def __init__(self, **kwargs):
-        super().__init__(
-            {
-                "noise": (0.02, "position noise: standard deviation per metre of distance"),
-                "seed": (0, "random seed of the noise"),
-            },
-            **kwargs,
-        )
-        self.rng = random.Random(int(self.p["seed"]) * 100 + self.number + (0 if self.p["side"] == "l" else 50))
+        super().__init__(**kwargs)
+        self.rng = random.Random(self.p.seed * 100 + self.number + (0 if self.p.side == "l" else 50))
         self.perception = PerceptionService(self.agent, "the simulator has not started")
 
     def on_cycle(self, world: World) -> None:
-        self.perception.publish(observe(world, self.side, self.number, self.rng, noise=float(self.p["noise"])))
+        self.perception.publish(observe(world, self.side, self.number, self.rng, noise=self.p.noise))
 
 
 def main() -> int:

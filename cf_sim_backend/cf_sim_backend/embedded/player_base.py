@@ -3,28 +3,28 @@
 from __future__ import annotations
 
 import json
+from typing import Literal
 
-from rcl_interfaces.msg import ParameterDescriptor
+from pydantic import Field
 from rclpy.node import Node
 from std_msgs.msg import String
 
 from cf_commag.client import Agent, own_launch_command
-from cf_commag.given_parameters import parameters_for
 from cf_commag.guarded import GuardedNode
+from cf_commag.params import ComponentParams
 from cf_sim_backend.embedded.topics import STATE_QOS, state_topic
 from cf_sim_backend.world import Side, World, world_from_snapshot
 
-PLAYER_PARAMS = {
-    "sim": ("cf_sim", "the simulation to play in (its topics are /<sim>/...)"),
-    "side": ("l", "l or r"),
-    "number": (1, "shirt number, 1..11"),
-    "team": ("", "team name (default: blue for l, red for r)"),
-    "name": ("", "agent name (default: <team>_<number>_<role>)"),
-    "commag": ("/commag", "the ComMAg's node name"),
-    "lease": (1.0, "lease period (s) with the ComMAg"),
-    "relaunch_fails": (False, "register a launch command that fails (to show withdrawal)"),
-    "exit_at_start": (False, "exit with code 3 at once (what a failing launch does)"),
-}
+
+class PlayerParams(ComponentParams):
+    """The parameters of each player component on the embedded simulator."""
+
+    sim: str = Field("cf_sim", description="the simulation to play in (its topics are /<sim>/...)")
+    side: Literal["l", "r"] = Field("l", description="l or r")
+    number: int = Field(1, ge=1, le=11, description="shirt number, 1..11")
+    team: str = Field("", description="team name (default: blue for l, red for r)")
+    relaunch_fails: bool = Field(False, description="register a launch command that fails (to show withdrawal)")
+    exit_at_start: bool = Field(False, description="exit with code 3 at once (what a failing launch does)")
 
 
 class PlayerComponentNode(GuardedNode, Node):
@@ -32,35 +32,33 @@ class PlayerComponentNode(GuardedNode, Node):
 
     ROLE = "component"
     SERVICE_CLASS = "Service"
+    PARAMS: type[PlayerParams] = PlayerParams
 
-    def __init__(self, extra_params: dict | None = None, node_name: str | None = None, **kwargs):
-        params = {**PLAYER_PARAMS, **(extra_params or {})}
+    def __init__(self, node_name: str | None = None, **kwargs):
         if node_name is None:  # named after its agent, so that ros2 node/param/... can tell players apart
-            node_name = self._agent_name(parameters_for({n: d for n, (d, _) in params.items()}, kwargs))
+            node_name = self._agent_name(self.PARAMS.given(kwargs))
         super().__init__(node_name, **kwargs)
-        for name, (default, description) in params.items():
-            self.declare_parameter(name, default, ParameterDescriptor(description=description))
-        self.p = {name: self.get_parameter(name).value for name in params}
-        self.side = Side(self.p["side"])
-        self.number = int(self.p["number"])
-        self.team = self.p["team"] or ("blue" if self.side is Side.LEFT else "red")
-        name = self._agent_name(self.p)
-        if self.p["exit_at_start"]:
+        self.p = self.PARAMS.declare_and_read(self)
+        self.side = Side(self.p.side)
+        self.number = self.p.number
+        self.team = self.p.team or ("blue" if self.side is Side.LEFT else "red")
+        name = self._agent_name(self.p.model_dump())
+        if self.p.exit_at_start:
             raise SystemExit(3)
         launch = own_launch_command()
-        if self.p["relaunch_fails"]:
+        if self.p.relaunch_fails:
             launch += ["--ros-args", "-p", "exit_at_start:=true"]
         self.world: World | None = None
         self.step: int | None = None  # the simulator's step counter, for its sync mode
-        self.create_subscription(String, state_topic(self.p["sim"]), self._on_state, STATE_QOS)
+        self.create_subscription(String, state_topic(self.p.sim), self._on_state, STATE_QOS)
         self.agent = Agent(
             self,
             name=name,
             service_class=self.SERVICE_CLASS,
             team=self.team,
             player_number=self.number,
-            lease=float(self.p["lease"]),
-            commag=self.p["commag"],
+            lease=self.p.lease,
+            commag=self.p.commag,
             launch_command=launch,
         )
 

@@ -6,83 +6,86 @@ import json
 import sys
 import time
 from pathlib import Path
+from typing import Literal
 
 import rclpy
-from rcl_interfaces.msg import ParameterDescriptor
+from pydantic import Field
 from rclpy.node import Node
 from std_msgs.msg import String
 
 from cf_commag.client import Agent, init, own_launch_command, spin
 from cf_commag.guarded import GuardedNode
+from cf_commag.params import ComponentParams
 from cf_sim_backend.embedded.matchlog import MatchLog
 from cf_sim_backend.embedded.physics import CommandError
 from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.embedded.topics import COMMAND_QOS, STATE_QOS, command_topic, state_topic
 from cf_sim_backend.world import Params, Side
 
-_PARAMS = {
-    "sim": ("cf_sim", "name of this simulation: topics are /<sim>/state and /<sim>/commands"),
-    "left_size": (11, "players on the left team (0..11)"),
-    "right_size": (11, "players on the right team (0..11)"),
-    "left_name": ("blue", "left team's name"),
-    "right_name": ("red", "right team's name"),
-    "seed": (0, "random seed: the same seed and commands give the same match"),
-    "cycle_period": (0.1, "seconds per cycle in realtime mode (0.1 is real time; smaller runs faster)"),
-    "mode": (
+
+class SimParams(ComponentParams):
+    """The embedded simulator's parameters (its agent's name is the simulation's unless ``name`` is set)."""
+
+    sim: str = Field("cf_sim", description="name of this simulation: topics are /<sim>/state and /<sim>/commands")
+    left_size: int = Field(11, ge=0, le=11, description="players on the left team (0..11)")
+    right_size: int = Field(11, ge=0, le=11, description="players on the right team (0..11)")
+    left_name: str = Field("blue", description="left team's name")
+    right_name: str = Field("red", description="right team's name")
+    seed: int = Field(0, description="random seed: the same seed and commands give the same match")
+    cycle_period: float = Field(
+        0.1, gt=0, description="seconds per cycle in realtime mode (0.1 is real time; smaller runs faster)"
+    )
+    mode: Literal["realtime", "sync"] = Field(
         "realtime",
-        "realtime: a cycle every cycle_period; sync: a cycle as soon as every player's action "
+        description="realtime: a cycle every cycle_period; sync: a cycle as soon as every player's action "
         "component has reported done (as rcssserver's synch_mode), at most sync_timeout apart",
-    ),
-    "sync_timeout": (0.5, "sync mode: seconds to wait for missing players before playing the cycle anyway"),
-    "half_cycles": (3000, "cycles per half"),
-    "halves": (2, "number of halves"),
-    "auto_kick_off_cycles": (50, "cycles before the kick-off happens by itself"),
-    "match_log": ("", "path of the match log (JSON lines); empty: none"),
-    "commag": ("/commag", "the ComMAg's node name"),
-    "exit_at_end": (False, "leave when the match is over"),
-}
+    )
+    sync_timeout: float = Field(
+        0.5, gt=0, description="sync mode: seconds to wait for missing players before playing the cycle anyway"
+    )
+    half_cycles: int = Field(3000, ge=1, description="cycles per half")
+    halves: int = Field(2, ge=1, description="number of halves")
+    auto_kick_off_cycles: int = Field(50, ge=0, description="cycles before the kick-off happens by itself")
+    match_log: str = Field("", description="path of the match log (JSON lines); empty: none")
+    exit_at_end: bool = Field(False, description="leave when the match is over")
+    lease: float = Field(2.0, gt=0, le=300, description="lease period (s) with the ComMAg")
 
 
 class SimNode(GuardedNode, Node):
-    """Runs the embedded simulator (parameters in _PARAMS, each declared with a description)."""
+    """Runs the embedded simulator. Parameters: SimParams."""
 
     def __init__(self, **kwargs):
         super().__init__("sim", **kwargs)
-        for name, (default, description) in _PARAMS.items():
-            self.declare_parameter(name, default, ParameterDescriptor(description=description))
-        p = {name: self.get_parameter(name).value for name in _PARAMS}
-        self.p = p
+        p = self.p = SimParams.declare_and_read(self)
         self.sim = Simulator(
-            Params(half_cycles=p["half_cycles"], halves=p["halves"], auto_kick_off_cycles=p["auto_kick_off_cycles"]),
-            team_sizes=(p["left_size"], p["right_size"]),
-            team_names=(p["left_name"], p["right_name"]),
-            seed=p["seed"],
+            Params(half_cycles=p.half_cycles, halves=p.halves, auto_kick_off_cycles=p.auto_kick_off_cycles),
+            team_sizes=(p.left_size, p.right_size),
+            team_names=(p.left_name, p.right_name),
+            seed=p.seed,
         )
         self.rejected = 0
-        self.log = MatchLog(Path(p["match_log"]), self.sim, p["cycle_period"]) if p["match_log"] else None
-        self.state_pub = self.create_publisher(String, state_topic(p["sim"]), STATE_QOS)
-        self.create_subscription(String, command_topic(p["sim"]), self._on_command, COMMAND_QOS)
+        self.log = MatchLog(Path(p.match_log), self.sim, p.cycle_period) if p.match_log else None
+        self.state_pub = self.create_publisher(String, state_topic(p.sim), STATE_QOS)
+        self.create_subscription(String, command_topic(p.sim), self._on_command, COMMAND_QOS)
         self.agent = Agent(
             self,
-            name=p["sim"],
+            name=p.name or p.sim,
             service_class="Simulator",
-            commag=p["commag"],
-            lease=2.0,
+            commag=p.commag,
+            lease=p.lease,
             launch_command=own_launch_command(),
         )
-        if p["mode"] not in ("realtime", "sync"):
-            raise ValueError(f"mode must be realtime or sync, not {p['mode']!r}")
-        self.sync = p["mode"] == "sync"
+        self.sync = p.mode == "sync"
         self.steps = 0
         self.done_by: set[tuple[str, int]] = set()
         self.last_step = time.monotonic()
         self.sync_timeouts = 0
         self.players = {(p_.side.value, p_.number) for p_ in self.sim.world.players.values()}
-        self.timer = self.create_timer(0.002 if self.sync else p["cycle_period"], self._on_timer)
+        self.timer = self.create_timer(0.002 if self.sync else p.cycle_period, self._on_timer)
         self.done = False
         self.get_logger().info(
-            f"simulating {p['left_name']} ({p['left_size']}) v {p['right_name']} ({p['right_size']}), "
-            f"seed {p['seed']}, {p['cycle_period'] * 1000:.0f} ms per cycle"
+            f"simulating {p.left_name} ({p.left_size}) v {p.right_name} ({p.right_size}), "
+            f"seed {p.seed}, {p.cycle_period * 1000:.0f} ms per cycle"
         )
 
     def _on_command(self, msg: String) -> None:
@@ -104,7 +107,7 @@ class SimNode(GuardedNode, Node):
             self._on_cycle()
             return
         waited = time.monotonic() - self.last_step
-        if self.done_by >= self.players or waited >= self.p["sync_timeout"]:
+        if self.done_by >= self.players or waited >= self.p.sync_timeout:
             if not self.done_by >= self.players:
                 self.sync_timeouts += 1
             self._on_cycle()
@@ -137,7 +140,7 @@ def main(args: list[str] | None = None) -> int:
     """Entry point of ``ros2 run cf_sim_backend sim``."""
     init(args=args if args is not None else sys.argv)
     node = SimNode()
-    if node.p["exit_at_end"]:
+    if node.p.exit_at_end:
         while rclpy.ok() and not node.done:
             rclpy.spin_once(node, timeout_sec=0.1)
         time.sleep(0.2)

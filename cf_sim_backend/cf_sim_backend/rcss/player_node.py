@@ -27,50 +27,52 @@ import threading
 import time
 from collections import deque
 
-from rcl_interfaces.msg import ParameterDescriptor
+from pydantic import Field
 from rclpy.node import Node
 
 from cf_commag.client import Agent, init, own_launch_command, spin
 from cf_commag.given_parameters import node_name as safe_node_name
-from cf_commag.given_parameters import parameters_for
 from cf_commag.guarded import GuardedNode
+from cf_commag.params import ComponentParams
 from cf_sim_backend.rcss.belief import world_state
 from cf_sim_backend.rcss.session import PlayerSession
 from cf_sim_backend.services import ActionService, PerceptionService
 from cf_sim_backend.world import Side
 
-PARAMS = {
-    "host": ("127.0.0.1", "rcssserver's host"),
-    "port": (6000, "rcssserver's player port"),
-    "team": ("CommonFramework", "team name on the server (and the components' team)"),
-    "goalie": (False, "connect as the goalkeeper"),
-    "number": (0, "the shirt number to take back after a relaunch"),
-    "reconnect": (False, "take over player <number> with (reconnect ...) instead of (init ...)"),
-    "local_port": (0, "UDP port to bind (0: any); a relaunch binds its predecessor's"),
-    "version": (19, "player protocol version"),
-    "synch_wait": (0.03, "synch mode: seconds to wait for a decision's request before (done)"),
-    "see_wait": (0.015, "real time: seconds to wait for a due see after sense_body"),
-    "server_timeout": (10.0, "exit with an error when the server is silent this long (s)"),
-    "commag": ("/commag", "the ComMAg's node name"),
-    "lease": (1.0, "lease period (s) with the ComMAg"),
-    "stats_file": ("", "write the session's counters (JSON) here every 50 cycles and at exit"),
-}
+
+class RcssPlayerParams(ComponentParams):
+    """A player on rcssserver: its perception and action agents are <team>_<number>_perception/_action."""
+
+    host: str = Field("127.0.0.1", description="rcssserver's host")
+    port: int = Field(6000, ge=1, le=65535, description="rcssserver's player port")
+    team: str = Field("CommonFramework", description="team name on the server (and the components' team)")
+    goalie: bool = Field(False, description="connect as the goalkeeper")
+    number: int = Field(0, ge=0, le=11, description="the shirt number to take back after a relaunch")
+    reconnect: bool = Field(False, description="take over player <number> with (reconnect ...) instead of (init ...)")
+    local_port: int = Field(
+        0, ge=0, le=65535, description="UDP port to bind (0: any); a relaunch binds its predecessor's"
+    )
+    version: int = Field(19, ge=1, description="player protocol version")
+    synch_wait: float = Field(
+        0.03, gt=0, description="synch mode: seconds to wait for a decision's request before (done)"
+    )
+    see_wait: float = Field(0.015, gt=0, description="real time: seconds to wait for a due see after sense_body")
+    server_timeout: float = Field(10.0, gt=0, description="exit with an error when the server is silent this long (s)")
+    stats_file: str = Field("", description="write the session's counters (JSON) here every 50 cycles and at exit")
 
 
 class RcssPlayerNode(GuardedNode, Node):
-    """A player on rcssserver. Parameters: PARAMS."""
+    """A player on rcssserver. Parameters: RcssPlayerParams."""
 
     def __init__(self, node_name: str | None = None, **kwargs):
         if node_name is None:  # the shirt number is the server's to give: known only on a relaunch
-            p = parameters_for({n: d for n, (d, _) in PARAMS.items()}, kwargs)
+            p = RcssPlayerParams.given(kwargs)
             node_name = safe_node_name(
                 f"{p['team']}_{p['number']}_rcss_player" if p["number"] else f"{p['team']}_rcss_player_{os.getpid()}"
             )
         super().__init__(node_name, **kwargs)
-        for name, (default, description) in PARAMS.items():
-            self.declare_parameter(name, default, ParameterDescriptor(description=description))
-        self.p = {name: self.get_parameter(name).value for name in PARAMS}
-        self.session = PlayerSession(str(self.p["team"]), bool(self.p["goalie"]), int(self.p["version"]))
+        self.p = RcssPlayerParams.declare_and_read(self)
+        self.session = PlayerSession(str(self.p.team), bool(self.p.goalie), int(self.p.version))
         self.agents: list[Agent] = []
         self.perception: PerceptionService | None = None  # once the server has given us a number
         self.action: ActionService | None = None
@@ -80,36 +82,36 @@ class RcssPlayerNode(GuardedNode, Node):
         self.finished = False
         self.last_heard = time.monotonic()
 
-        host = socket.gethostbyname(str(self.p["host"]))
-        self.server = (host, int(self.p["port"]))
+        host = socket.gethostbyname(str(self.p.host))
+        self.server = (host, int(self.p.port))
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
         # A loopback server needs only a loopback socket; otherwise listen where the server can answer.
         # No SO_REUSEADDR: binding a predecessor's port succeeds only once that process is gone,
         # so a relaunched adapter can never steal the player from one that is still alive.
-        self.sock.bind(("127.0.0.1" if host.startswith("127.") else "", int(self.p["local_port"])))
+        self.sock.bind(("127.0.0.1" if host.startswith("127.") else "", int(self.p.local_port)))
         self.attached = False  # the server talks to us as its player
         self.last_hello = time.monotonic()
         self.queue: deque[tuple[bytes, tuple]] = deque()
         self.wake = self.create_guard_condition(self._drain)
-        self.act_timer = self.create_timer(float(self.p["synch_wait"]), self._on_act_timer)
+        self.act_timer = self.create_timer(float(self.p.synch_wait), self._on_act_timer)
         self.act_timer.cancel()
-        self.see_timer = self.create_timer(float(self.p["see_wait"]), self._on_see_timer)
+        self.see_timer = self.create_timer(float(self.p.see_wait), self._on_see_timer)
         self.see_timer.cancel()
         self.create_timer(1.0, self._watch)
         threading.Thread(target=self._read, name="rcss-udp", daemon=True).start()
         self._hello()
-        if self.p["reconnect"] and int(self.p["number"]):
+        if self.p.reconnect and int(self.p.number):
             # A relaunch registers at once (within the ComMAg's start-up grace), even while the
             # server still refuses to give the player back (it does so only outside play_on).
-            self.get_logger().info(f"asking for {self.session.team} {self.p['number']} back (reconnect)")
+            self.get_logger().info(f"asking for {self.session.team} {self.p.number} back (reconnect)")
             self._join()
 
     # ---- the server -------------------------------------------------------------
 
     def _hello(self) -> None:
         self.last_hello = time.monotonic()
-        number = int(self.p["number"])
-        text = self.session.reconnect(number) if self.p["reconnect"] and number else self.session.hello()
+        number = int(self.p.number)
+        text = self.session.reconnect(number) if self.p.reconnect and number else self.session.hello()
         self._send(text, to=self.server)
 
     def _send(self, text: str, to: tuple | None = None) -> None:
@@ -178,7 +180,7 @@ class RcssPlayerNode(GuardedNode, Node):
         port = self.sock.getsockname()[1]
         launch = [*own_launch_command(), "--ros-args", "-p", f"number:={n}", "-p", "reconnect:=true"]
         launch += ["-p", f"local_port:={port}"]
-        common = {"team": team, "player_number": n, "lease": float(self.p["lease"]), "commag": self.p["commag"]}
+        common = {"team": team, "player_number": n, "lease": float(self.p.lease), "commag": self.p.commag}
         perception = Agent(
             self, name=f"{team}_{n}_perception", service_class="WorldModel", launch_command=launch, **common
         )
@@ -192,12 +194,12 @@ class RcssPlayerNode(GuardedNode, Node):
     def _watch(self) -> None:
         now = time.monotonic()
         silent = now - self.last_heard
-        reconnecting = bool(self.p["reconnect"]) and int(self.p["number"]) > 0
+        reconnecting = bool(self.p.reconnect) and int(self.p.number) > 0
         if not self.attached and now - self.last_hello > (1.0 if reconnecting else 3.0):
             # The server may not be up yet, or (a relaunch) refuses to reconnect during play_on: ask
             # again. An (init ...) is repeated only after 3 s: each one that arrives takes a shirt number.
             self._hello()
-        if silent > float(self.p["server_timeout"]) and not self.finished:
+        if silent > float(self.p.server_timeout) and not self.finished:
             self.get_logger().error(f"the server has been silent for {silent:.0f} s")
             self.finished = True
         if self.finished:
@@ -253,7 +255,7 @@ class RcssPlayerNode(GuardedNode, Node):
         return f"{b.team} {b.score[side]} : {b.score[side.other]} {b.opponent or 'opponent'}"
 
     def _write_stats(self) -> None:
-        path = self.p["stats_file"]
+        path = self.p.stats_file
         if not path:
             return
         b = self.session.belief
