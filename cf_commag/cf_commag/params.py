@@ -67,3 +67,12 @@ class ComponentParams(NodeParams):
     commag: str = Field("/commag", description="the ComMAg's node name")
     lease: float = Field(1.0, gt=0, le=300, description="lease period (s) with the ComMAg")
     name: str = Field("", description="agent name (empty: the component's default, e.g. <team>_<number>_<role>)")
+    relaunch: bool = Field(
+        True,
+        description="register the command that starts this process again, so the ComMAg relaunches it; "
+        "false when something else restarts it (launch's respawn) or nothing may",
+    )
+
+    def launch_command(self, command: list[str]) -> list[str]:
+        """The launch command to register: ``command``, or none if this component is not to be relaunched."""
+        return command if self.relaunch else []

@@ -68,7 +68,7 @@ class DecisionNode(GuardedNode, Node):
             player_number=self.number,
             lease=p.lease,
             commag=p.commag,
-            launch_command=own_launch_command(),
+            launch_command=p.launch_command(own_launch_command()),
             on_message=self._on_message,
         )
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)

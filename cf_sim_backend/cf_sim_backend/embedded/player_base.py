@@ -48,6 +48,7 @@ class PlayerComponentNode(GuardedNode, Node):
         launch = own_launch_command()
         if self.p.relaunch_fails:
             launch += ["--ros-args", "-p", "exit_at_start:=true"]
+        launch = self.p.launch_command(launch)
         self.world: World | None = None
         self.step: int | None = None  # the simulator's step counter, for its sync mode
         self.create_subscription(String, state_topic(self.p.sim), self._on_state, STATE_QOS)

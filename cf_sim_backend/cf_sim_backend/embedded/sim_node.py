@@ -73,7 +73,7 @@ class SimNode(GuardedNode, Node):
             service_class="Simulator",
             commag=p.commag,
             lease=p.lease,
-            launch_command=own_launch_command(),
+            launch_command=p.launch_command(own_launch_command()),
         )
         self.sync = p.mode == "sync"
         self.steps = 0

@@ -179,7 +179,7 @@ class RcssPlayerNode(GuardedNode, Node):
         # that port only once this process is gone, so it never steals the player from a live one.
         port = self.sock.getsockname()[1]
         launch = [*own_launch_command(), "--ros-args", "-p", f"number:={n}", "-p", "reconnect:=true"]
-        launch += ["-p", f"local_port:={port}"]
+        launch = self.p.launch_command([*launch, "-p", f"local_port:={port}"])
         common = {"team": team, "player_number": n, "lease": float(self.p.lease), "commag": self.p.commag}
         perception = Agent(
             self, name=f"{team}_{n}_perception", service_class="WorldModel", launch_command=launch, **common
