@@ -9,11 +9,9 @@ import sys
 import time
 from pathlib import Path
 
-import rclpy
 from ament_index_python.packages import get_package_prefix
-from rclpy.context import Context
-from rclpy.executors import SingleThreadedExecutor
 
+from cf_commag.testing import Ros
 from cf_commag.transport.qos import EVENTS_QOS, SNAPSHOT_QOS
 from cf_interfaces.msg import Registry, RegistryEvent
 from cf_interfaces.srv import Deregister, Lookup, Register
@@ -57,15 +55,12 @@ class Processes:
         subprocess.run(["pkill", "-9", "-f", self.tag], check=False)
 
 
-class Probe:
+class Probe(Ros):
     """An in-process node that watches and calls a ComMAg over real DDS."""
 
     def __init__(self, commag: str, tag: str):
-        self.context = Context()
-        rclpy.init(context=self.context)
-        self.node = rclpy.create_node(f"probe_{tag}", context=self.context)
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
+        super().__init__()
+        self.node = super().node(f"probe_{tag}")  # tests use probe.node as the node itself
         self.events: list[RegistryEvent] = []
         self.snapshot: Registry | None = None
         self.node.create_subscription(RegistryEvent, f"{commag}/events", self.events.append, EVENTS_QOS)
@@ -76,21 +71,6 @@ class Probe:
 
     def _on_snapshot(self, msg: Registry) -> None:
         self.snapshot = msg
-
-    def spin_until(self, predicate, timeout: float = 30.0, what: str = "condition"):
-        deadline = time.monotonic() + timeout
-        while True:
-            value = predicate()
-            if value:
-                return value
-            if time.monotonic() > deadline:
-                raise AssertionError(f"timed out after {timeout} s waiting for {what}")
-            self.executor.spin_once(timeout_sec=0.02)
-
-    def spin_for(self, seconds: float) -> None:
-        deadline = time.monotonic() + seconds
-        while time.monotonic() < deadline:
-            self.executor.spin_once(timeout_sec=0.02)
 
     def call(self, client, request, timeout: float = 30.0, attempt: float = 2.0):
         """Call a service; ask again if unanswered (a restarted server may miss the first request)."""
@@ -116,11 +96,6 @@ class Probe:
     def wait_kind(self, name: str, kind: str, count: int = 1, timeout: float = 30.0) -> RegistryEvent:
         self.spin_until(lambda: self.kinds(name).count(kind) >= count, timeout, f"{count} x {kind} of {name}")
         return [e for e in self.events if e.record.name == name and e.kind_name == kind][count - 1]
-
-    def close(self) -> None:
-        self.executor.shutdown()
-        self.node.destroy_node()
-        rclpy.try_shutdown(context=self.context)
 
 
 def start_commag(procs: Processes, tag: str, tmp_path: Path, *params: str, log_name: str = "commag"):

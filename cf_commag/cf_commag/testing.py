@@ -33,9 +33,13 @@ class Ros:
         self.executor.add_node(node)
         return node
 
-    def spin_until(self, predicate, timeout: float = 30.0, what: str = "condition") -> None:
+    def spin_until(self, predicate, timeout: float = 30.0, what: str = "condition"):
+        """Spin until ``predicate()`` is true, and return its value; AssertionError after ``timeout``."""
         deadline = time.monotonic() + timeout
-        while not predicate():
+        while True:
+            value = predicate()
+            if value:
+                return value
             if time.monotonic() > deadline:
                 raise AssertionError(f"timed out after {timeout} s waiting for {what}")
             self.executor.spin_once(timeout_sec=0.02)
