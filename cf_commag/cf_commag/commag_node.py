@@ -7,11 +7,9 @@ import sys
 import time
 from pathlib import Path
 
-import rclpy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from pydantic import Field
 from rcl_interfaces.msg import ParameterDescriptor
-from rclpy.executors import ExternalShutdownException
 from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackReturn
 
 from cf_interfaces.msg import Registry as RegistryMsg
@@ -25,6 +23,7 @@ from .launcher import Launcher, LaunchPolicy, workspace_roots
 from .params import NodeParams
 from .records import EventKind, State
 from .registry import Event, Registry, RegistryConfig
+from .runtime import run
 from .transport.qos import EVENTS_QOS, SERVICE_QOS, SNAPSHOT_QOS
 
 STALL = 0.25  # s: a tick this late means the ComMAg itself was not running
@@ -315,23 +314,22 @@ class CommagNode(GuardedNode, LifecycleNode):
         self._diag_pub.publish(array)
 
 
+def _started() -> CommagNode:
+    node = CommagNode()
+    if node.get_parameter("autostart").value:
+        node.trigger_configure()
+        node.trigger_activate()
+    return node
+
+
+def _stopped(node: CommagNode) -> None:
+    node.close_store()
+    node.stop_launched()
+
+
 def main(args: list[str] | None = None) -> int:
     """Entry point of ``ros2 run cf_commag commag``."""
-    rclpy.init(args=args if args is not None else sys.argv)
-    node = CommagNode()
-    try:
-        if node.get_parameter("autostart").value:
-            node.trigger_configure()
-            node.trigger_activate()
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.close_store()
-        node.stop_launched()
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return run(_started, on_exit=_stopped, args=args)
 
 
 if __name__ == "__main__":

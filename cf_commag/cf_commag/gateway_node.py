@@ -10,9 +10,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Literal
 
-import rclpy
 from pydantic import Field
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import String
 
@@ -27,7 +25,7 @@ from .params import NodeParams
 from .records import Entry, Query, Record
 from .registry import Result
 from .renewer import Renewer
-from .runtime import make_executor
+from .runtime import make_executor, run
 from .transport.outbox import Outbox, inbox_topic, sample_text
 from .transport.qos import EVENTS_QOS, INBOX_QOS, SERVICE_QOS, SNAPSHOT_QOS
 
@@ -232,24 +230,15 @@ class GatewayNode(GuardedNode, Node):
         self._thread.join(timeout=5)
 
 
-def main(args: list[str] | None = None) -> int:
-    """Entry point of ``ros2 run cf_commag gateway``."""
-    rclpy.init(args=args if args is not None else sys.argv)
-    node = GatewayNode()
+def _executor(node: GatewayNode):
     executor = make_executor(node.get_parameter("executor").value)
     executor.add_node(node)
-    try:
-        # spin_once in a loop: EventsExecutor.spin() was seen to hang on shutdown.
-        while rclpy.ok():
-            executor.spin_once(timeout_sec=0.1)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.shutdown()
-        executor.shutdown()
-        node.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return executor
+
+
+def main(args: list[str] | None = None) -> int:
+    """Entry point of ``ros2 run cf_commag gateway``."""
+    return run(GatewayNode, executor=_executor, on_exit=GatewayNode.shutdown, args=args)
 
 
 if __name__ == "__main__":

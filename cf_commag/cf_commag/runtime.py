@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 from rclpy._rclpy_pybind11 import RCLError
 from rclpy.executors import ExternalShutdownException
@@ -14,11 +14,19 @@ from rclpy.node import Node
 from .agent import Agent
 
 
-def spin(node: Node, agents: Iterable[Agent] = (), *, executor=None) -> None:
-    """Spin until SIGINT or SIGTERM, then deregister the agents cleanly and shut down.
+def spin(
+    node: Node,
+    agents: Iterable[Agent] = (),
+    *,
+    executor=None,
+    until: Callable[[], bool] | None = None,
+    on_exit: Callable[[], None] | None = None,
+) -> None:
+    """Spin until SIGINT or SIGTERM (or ``until()``), then deregister the agents cleanly and shut down.
 
-    Call ``rclpy.init(signal_handler_options=SignalHandlerOptions.NO)`` first
-    (as :func:`init` does), so the context is still alive to deregister.
+    ``on_exit`` runs first on the way out (the node's own clean-up). Call
+    ``rclpy.init(signal_handler_options=SignalHandlerOptions.NO)`` first (as :func:`init` does),
+    so the context is still alive to deregister.
     """
     import signal
 
@@ -30,16 +38,24 @@ def spin(node: Node, agents: Iterable[Agent] = (), *, executor=None) -> None:
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
     try:
-        if executor is None:
+        if executor is None and until is None:
             rclpy.spin(node)
         else:
-            while rclpy.ok():  # spin_once in a loop: EventsExecutor.spin() was seen to hang on shutdown
-                executor.spin_once(timeout_sec=0.1)
+            # spin_once in a loop: EventsExecutor.spin() was seen to hang on shutdown.
+            spin_once = (
+                executor.spin_once
+                if executor is not None
+                else lambda timeout_sec: rclpy.spin_once(node, timeout_sec=timeout_sec)
+            )
+            while rclpy.ok() and not (until is not None and until()):
+                spin_once(timeout_sec=0.1)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
         signal.signal(signal.SIGTERM, signal.SIG_IGN)
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+        if on_exit is not None:
+            on_exit()
         for agent in agents:
             future = agent.close()
             if future is not None:
@@ -51,6 +67,8 @@ def spin(node: Node, agents: Iterable[Agent] = (), *, executor=None) -> None:
         for agent in agents:
             with contextlib.suppress(RCLError):
                 agent.flush(timeout=2.0)
+        if executor is not None:
+            executor.shutdown()
         node.destroy_node()
         rclpy.try_shutdown()
 
@@ -81,9 +99,44 @@ def own_launch_command() -> list[str]:
     return [os.path.realpath(sys.argv[0]), *sys.argv[1:]]
 
 
-def run(make_node) -> int:
-    """Entry point body of a component: init, build the node (it has ``.agent``), spin, deregister."""
-    init(args=sys.argv)
-    node = make_node()
-    spin(node, [node.agent])
+def run(
+    make_node: Callable[[], Node],
+    *,
+    agents: Callable[[Node], Iterable[Agent]] | None = None,
+    executor: Callable[[Node], object] | None = None,
+    until: Callable[[Node], bool] | None = None,
+    on_exit: Callable[[Node], None] | None = None,
+    args: list[str] | None = None,
+) -> int:
+    """The body of every node's ``main()``: init, build the node, spin, deregister, clean up; the exit code.
+
+    ``agents(node)`` are deregistered on the way out (default: ``node.agent`` if it has one);
+    ``executor(node)`` gives an executor holding the node (default: rclpy's); ``until(node)``
+    ends the spin early; ``on_exit(node)`` is the node's own clean-up. Invalid parameters
+    (ValueError while the node is built) end the process with code 2 and the reason;
+    SystemExit, from the constructor or a callback, with its code.
+    """
+    import rclpy
+
+    init(args=sys.argv if args is None else args)
+    try:
+        node = make_node()
+    except ValueError as exc:
+        print(f"{os.path.basename(sys.argv[0])}: {exc}", file=sys.stderr)
+        rclpy.try_shutdown()
+        return 2
+    except SystemExit as exc:
+        rclpy.try_shutdown()
+        return int(exc.code or 0)
+    held = agents(node) if agents is not None else [a for a in [getattr(node, "agent", None)] if a is not None]
+    try:
+        spin(
+            node,
+            held,
+            executor=executor(node) if executor is not None else None,
+            until=(lambda: until(node)) if until is not None else None,
+            on_exit=(lambda: on_exit(node)) if on_exit is not None else None,
+        )
+    except SystemExit as exc:  # a callback decided the process is done (e.g. the match is over)
+        return int(exc.code or 0)
     return 0

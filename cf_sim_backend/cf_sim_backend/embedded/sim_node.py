@@ -8,12 +8,11 @@ import time
 from pathlib import Path
 from typing import Literal
 
-import rclpy
 from pydantic import Field
 from rclpy.node import Node
 from std_msgs.msg import String
 
-from cf_commag.client import Agent, init, own_launch_command, spin
+from cf_commag.client import Agent, own_launch_command, run
 from cf_commag.guarded import GuardedNode
 from cf_commag.params import ComponentParams
 from cf_sim_backend.embedded.matchlog import MatchLog
@@ -138,18 +137,7 @@ class SimNode(GuardedNode, Node):
 
 def main(args: list[str] | None = None) -> int:
     """Entry point of ``ros2 run cf_sim_backend sim``."""
-    init(args=args if args is not None else sys.argv)
-    node = SimNode()
-    if node.p.exit_at_end:
-        while rclpy.ok() and not node.done:
-            rclpy.spin_once(node, timeout_sec=0.1)
-        time.sleep(0.2)
-        node.agent.close()
-        node.destroy_node()
-        rclpy.try_shutdown()
-        return 0
-    spin(node, [node.agent])
-    return 0
+    return run(SimNode, until=lambda node: node.p.exit_at_end and node.done, args=args)
 
 
 if __name__ == "__main__":

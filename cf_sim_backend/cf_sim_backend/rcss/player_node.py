@@ -30,7 +30,7 @@ from collections import deque
 from pydantic import Field
 from rclpy.node import Node
 
-from cf_commag.client import Agent, init, own_launch_command, spin
+from cf_commag.client import Agent, own_launch_command, run
 from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.guarded import GuardedNode
 from cf_commag.params import ComponentParams
@@ -283,21 +283,19 @@ class RcssPlayerNode(GuardedNode, Node):
         self.sock.close()
 
 
-def main() -> int:
-    """Entry point of ``ros2 run cf_sim_backend rcss_player``."""
-    init(args=sys.argv)
+def _player() -> RcssPlayerNode:
     try:
-        node = RcssPlayerNode()
+        return RcssPlayerNode()
     except OSError as exc:  # e.g. the predecessor's port is still bound: it is alive, we are not needed
         print(f"rcss_player: cannot open the player's UDP port: {exc}", file=sys.stderr)
-        return 4
-    try:
-        spin(node, node.agents)  # the default executor: the events one has no guard conditions (Jazzy)
-    except SystemExit as exc:
-        return int(exc.code or 0)
-    finally:
-        node.close()
-    return 0
+        raise SystemExit(4) from None
+
+
+def main() -> int:
+    """Entry point of ``ros2 run cf_sim_backend rcss_player``."""
+    # The default executor: the events one has no guard conditions (Jazzy). The agents are
+    # made once the server gave us a number: spin() holds this very list.
+    return run(_player, agents=lambda node: node.agents, on_exit=RcssPlayerNode.close)
 
 
 if __name__ == "__main__":
