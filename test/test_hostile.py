@@ -108,7 +108,7 @@ def test_a_fuzz_run_and_thousands_of_agents_leave_both_processes_well(procs, pro
         flush=True,
     )
     assert gateway.poll() is None and commag.poll() is None, "a process died"
-    assert outcome.lines >= LINES and outcome.connections > 1000
+    assert outcome.lines >= LINES and outcome.connections > LINES // 200  # about 80 lines per connection
     assert outcome.internal_errors == 0 and not outcome.violations, outcome.violations[:5]
     assert not warm.violations, warm.violations[:5]
     assert outcome.answered + outcome.closed_with_error + outcome.closed_after_bye == outcome.connections
