@@ -77,9 +77,16 @@ def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, t
     perception = probe.spin_until(
         lambda: decision.provider("WorldModel", team=team, player_number=2), timeout=60, what="a perception provider"
     )
-    future = decision.request(perception, "(val Game)", protocol="fipa-query", timeout=5)
-    probe.spin_until(future.done, what="perception answer")
-    assert future.result().ok and future.result().content.startswith("(Game :time")
+
+    def game():
+        future = decision.request(perception, "(val Game)", protocol="fipa-query", timeout=5)
+        probe.spin_until(future.done, what="perception answer")
+        reply = future.result()
+        # Registered before the simulator's first cycle reached it (a loaded machine): ask again.
+        return None if "simulator has not started" in (reply.content or "") else reply
+
+    reply = probe.spin_until(game, timeout=60, what="the perception's answer once the simulator runs")
+    assert reply.ok and reply.content.startswith("(Game :time")
 
     def play(number, wanted, seconds=90.0):
         """Ask for intercept, then shoot, until `wanted` requests were done; returns the answers seen.
