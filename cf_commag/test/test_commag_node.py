@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import time
 
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from rclpy.lifecycle import TransitionCallbackReturn
@@ -92,6 +93,7 @@ def test_register_lookup_deregister_events_snapshot_diagnostics(ros, unique, tmp
     dereg = probe.create_client(Deregister, f"/commag_{unique}/deregister")
     assert ros.call(dereg, Deregister.Request(name="red_1_kick")).accepted
     assert not ros.call(dereg, Deregister.Request(name="red_1_kick")).accepted
+    deregistered_at = time.time()  # diagnostics carry wall-clock stamps
 
     ros.spin_until(lambda: len(events) >= 5, what="5 events")
     assert [e.kind_name for e in events] == ["registered"] * 4 + ["deregistered"]
@@ -105,7 +107,13 @@ def test_register_lookup_deregister_events_snapshot_diagnostics(ros, unique, tmp
     assert sorted(r.name for r in snapshots[-1].records) == ["blue_1_action", "blue_1_kick", "blue_1_shoot"]
 
     def component_statuses():
-        mine = [a for a in diags if any(s.name == "commag: blue_1_kick" for s in a.status)]
+        # Only arrays published after the deregistration (an earlier one may still arrive late).
+        mine = [
+            a
+            for a in diags
+            if any(s.name == "commag: blue_1_kick" for s in a.status)
+            and a.header.stamp.sec + a.header.stamp.nanosec * 1e-9 > deregistered_at
+        ]
         return mine[-1].status if mine else None
 
     ros.spin_until(component_statuses, what="diagnostics")
