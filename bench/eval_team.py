@@ -15,7 +15,7 @@ import random
 import statistics
 
 from cf_decision.policy import cycles_to_ball, decide
-from cf_decision.requests import same_action
+from cf_decision.requests import same_request
 from cf_sim_backend.embedded.chaser import chase_commands
 from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.perception import observe
@@ -48,7 +48,7 @@ class PolicyTeam:
             decision = decide(st, n, self.size, claims)
             key = (decision.method, decision.action)
             current = self.current.get(n)
-            if current is None or current[0][0] != key[0] or not same_action(current[0][1], key[1]):
+            if current is None or not same_request(current[0], key):
                 try:
                     skill = skill_for(decision.method, decision.action, self.side, w, me)
                 except SkillError:

@@ -42,6 +42,11 @@ def same_action(a: BaseModel, b: BaseModel) -> bool:
     return all(_same_value(name, getattr(a, name), getattr(b, name)) for name in type(a).model_fields)
 
 
+def same_request(a: tuple[str, BaseModel] | None, b: tuple[str, BaseModel]) -> bool:
+    """Whether two (method, action) pairs ask for the same thing."""
+    return a is not None and a[0] == b[0] and same_action(a[1], b[1])
+
+
 @dataclass
 class RequestStats:
     cycles: int = 0  # decisions taken
@@ -63,23 +68,20 @@ class RequestStats:
 class ActionRequests:
     """The request in force for one player, and the rule for sending the next."""
 
-    current: tuple[str, BaseModel] | None = None  # (method, action) of the request in force
-    token: object = None  # what identifies the request in force (the runtime's future)
-    running: bool = False
-    last_sent: tuple[str, BaseModel] | None = None
+    current: tuple[str, BaseModel] | None = None  # (method, action) of the last request sent
+    token: object = None  # what identifies that request (the runtime's future)
+    running: bool = False  # it is in force: not answered yet
     stats: RequestStats = field(default_factory=RequestStats)
 
     def wants(self, method: str, action: BaseModel) -> bool:
         """Whether this cycle's decision must go out as a request."""
         self.stats.cycles += 1
-        if not self.running or self.current is None:
-            return True
-        return not (method == self.current[0] and same_action(action, self.current[1]))
+        return not (self.running and same_request(self.current, (method, action)))
 
     def sent(self, method: str, action: BaseModel, token: object) -> None:
-        if self.last_sent is not None and method == self.last_sent[0] and same_action(action, self.last_sent[1]):
+        if same_request(self.current, (method, action)):
             self.stats.resends += 1
-        self.current = self.last_sent = (method, action)
+        self.current = (method, action)
         self.token, self.running = token, True
         self.stats.requests += 1
 
