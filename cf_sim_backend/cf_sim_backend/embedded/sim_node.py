@@ -89,17 +89,28 @@ class SimNode(GuardedNode, Node):
 
     def _on_command(self, msg: String) -> None:
         try:
-            c = json.loads(msg.data)
-            if "done" in c:  # sync mode: this player's action component has acted on our last state
-                if int(c["done"]) == self.steps:
-                    self.done_by.add((str(c["side"]), int(c["number"])))
-                return
-            if c.get("cmd") == "say":
-                return
-            self.sim.command(Side(c["side"]), int(c["number"]), str(c["cmd"]), *c.get("args", []))
-        except (CommandError, ValueError, KeyError, TypeError) as exc:
-            self.rejected += 1
-            self.get_logger().warning(f"command refused: {exc} ({msg.data[:80]})", throttle_duration_sec=2.0)
+            data = json.loads(msg.data)
+        except ValueError as exc:
+            self._refuse(exc, msg.data)
+            return
+        for c in data if isinstance(data, list) else [data]:
+            try:
+                self._command(c)
+            except (CommandError, ValueError, KeyError, TypeError, AttributeError) as exc:
+                self._refuse(exc, json.dumps(c))
+
+    def _command(self, c: dict) -> None:
+        if "done" in c:  # sync mode: this player's action component has acted on our last state
+            if int(c["done"]) == self.steps:
+                self.done_by.add((str(c["side"]), int(c["number"])))
+            return
+        if c.get("cmd") == "say":
+            return
+        self.sim.command(Side(c["side"]), int(c["number"]), str(c["cmd"]), *c.get("args", []))
+
+    def _refuse(self, exc: Exception, text: str) -> None:
+        self.rejected += 1
+        self.get_logger().warning(f"command refused: {exc} ({text[:80]})", throttle_duration_sec=2.0)
 
     def _on_timer(self) -> None:
         if not self.sync:

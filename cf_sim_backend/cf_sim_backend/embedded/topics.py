@@ -1,14 +1,13 @@
 """The link between the simulator and its per-player components (the back-end's own wire, like rcssserver's UDP).
 
 ``/<sim>/state``: std_msgs/String, one JSON object per cycle (Simulator.snapshot()).
-``/<sim>/commands``: std_msgs/String, one JSON object per command:
-``{"side": "l", "number": 7, "cmd": "dash", "args": [80, 0]}``.
+``/<sim>/commands``: std_msgs/String, one JSON object per command, or a list of them (what the
+components of one process send in a cycle): ``{"side": "l", "number": 7, "cmd": "dash", "args": [80, 0]}``;
+in sync mode ``{"side": "l", "number": 7, "done": <step>}`` says a player has acted on that step.
 Components speak the Framework Language to everyone else; only this link is simulator-specific.
 """
 
 from __future__ import annotations
-
-import json
 
 from rclpy.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
@@ -22,7 +21,3 @@ def state_topic(sim: str) -> str:
 
 def command_topic(sim: str) -> str:
     return f"/{sim}/commands"
-
-
-def encode_command(side: str, number: int, cmd: str, args: tuple) -> str:
-    return json.dumps({"side": side, "number": number, "cmd": cmd, "args": list(args)})
