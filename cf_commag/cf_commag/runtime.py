@@ -67,6 +67,8 @@ def spin(
         for agent in agents:
             with contextlib.suppress(RCLError):
                 agent.flush(timeout=2.0)
+            c = agent.counters
+            node.get_logger().info(f"{agent.me.name}: {c['sent']} messages sent, {c['received']} received")
         if executor is not None:
             executor.shutdown()
         node.destroy_node()

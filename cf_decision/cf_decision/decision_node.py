@@ -82,7 +82,11 @@ class DecisionNode(GuardedNode, Node):
         self.last_inform = 0.0
         self.requests = ActionRequests()
         self.create_timer(0.2, self._watch_providers)
-        self.create_timer(30.0, lambda: self.get_logger().info(f"requests: {self.requests.stats.line()}"))
+        self.last_time: int | None = None  # the game time of the last perception
+        self.create_timer(30.0, self.log_stats)
+
+    def log_stats(self) -> None:
+        self.get_logger().info(f"requests: {self.requests.stats.line()}")
 
     # ---- wiring ---------------------------------------------------------------
 
@@ -123,6 +127,9 @@ class DecisionNode(GuardedNode, Node):
             return
         if not isinstance(state, WorldState) or not self._acting():
             return
+        if self.last_time is not None and state.time > self.last_time + 1:
+            self.requests.stats.missed += state.time - self.last_time - 1
+        self.last_time = state.time
         now = time.monotonic()
         claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
         decision = decide(state, self.number, self.team_size, claims)
@@ -183,7 +190,7 @@ class DecisionNode(GuardedNode, Node):
 
 def main() -> int:
     """Entry point of ``ros2 run cf_decision decision``."""
-    return run(DecisionNode)
+    return run(DecisionNode, on_exit=DecisionNode.log_stats)
 
 
 if __name__ == "__main__":

@@ -50,6 +50,7 @@ def same_request(a: tuple[str, BaseModel] | None, b: tuple[str, BaseModel]) -> b
 @dataclass
 class RequestStats:
     cycles: int = 0  # decisions taken
+    missed: int = 0  # cycles of the game whose perception never came (the decision was not run)
     requests: int = 0  # requests sent
     resends: int = 0  # requests for the same action as the one before (its request had ended)
     done: int = 0
@@ -59,7 +60,7 @@ class RequestStats:
     def line(self) -> str:
         per = self.requests / max(1, self.cycles)
         return (
-            f"{self.cycles} cycles, {self.requests} requests ({per:.2f} per cycle), {self.resends} re-sends,"
+            f"{self.cycles} cycles ({self.missed} missed), {self.requests} requests ({per:.2f} per cycle), {self.resends} re-sends,"
             f" {self.done} done, {self.failed} failed, {self.replaced} answers to replaced requests"
         )
 

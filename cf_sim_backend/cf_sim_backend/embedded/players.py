@@ -98,6 +98,13 @@ def _node_kwargs(values: dict) -> dict:
     return {"parameter_overrides": [Parameter(k, value=v) for k, v in values.items()], "use_global_arguments": False}
 
 
+def _log_stats(node: PlayersNode) -> None:
+    for component in node.components:
+        if isinstance(component, DecisionNode):
+            component.log_stats()
+    node.get_logger().info(f"{node.host.delivered} messages delivered in this process")
+
+
 def _executor(node: PlayersNode):
     executor = default_executor(node)
     for component in node.components:
@@ -107,7 +114,7 @@ def _executor(node: PlayersNode):
 
 def main(args: list[str] | None = None) -> int:
     """Entry point of ``ros2 run cf_sim_backend players``."""
-    return run(PlayersNode, agents=lambda node: node.agents, executor=_executor, args=args)
+    return run(PlayersNode, agents=lambda node: node.agents, executor=_executor, on_exit=_log_stats, args=args)
 
 
 if __name__ == "__main__":
