@@ -177,7 +177,7 @@ class Demo:
                 # the ones already running of the CPU they need to renew their leases.
                 for number in range(1, a.players + 1):
                     for role in ("perception", "action", "decision"):
-                        if (side, number, role) != ("l", 2, "action"):
+                        if (side, number, role) != ("l", 2, "action") or not a.faults:
                             self.component(role, side, number)
                             self.spin(a.stagger)
                 continue
@@ -191,15 +191,16 @@ class Demo:
                     "numbers": "[" + ",".join(map(str, numbers)) + "]",
                     "lease": 2.0,
                     "name": label,
-                    "skip": "[blue_2_action]",
+                    "skip": "[blue_2_action]" if self.args.faults else "['']",
                 }
                 argv = [exe("cf_sim_backend", "players"), "--ros-args", "-r", f"__node:={label}"]
                 for key, value in params.items():
                     argv += ["-p", f"{key}:={value}"]
                 self.start(label, argv)
                 self.spin(a.stagger * (1 if a.layout == "team" else 2))
-        self.component("action", "l", 2, "-p", "relaunch_fails:=true")  # its relaunch always fails
-        self.component("action", "l", 2, name="blue_2_action_twin")  # blue 2's redundant action provider
+        if self.args.faults:
+            self.component("action", "l", 2, "-p", "relaunch_fails:=true")  # its relaunch always fails
+            self.component("action", "l", 2, name="blue_2_action_twin")  # blue 2's redundant action provider
 
     def kill_target(self) -> tuple[str, str]:
         """What the first fault kills, and what the ComMAg should do about it."""
@@ -260,7 +261,7 @@ class Demo:
             ],
         )
         self.start_players()
-        expected = 6 * a.players + 1
+        expected = 6 * a.players + (1 if a.faults else 0)
         self.say(f"started {expected} components ({len(self.procs) - 1} processes); waiting until each has registered")
         deadline = time.monotonic() + 120
         while self.counts["registered"] < expected and time.monotonic() < deadline:
@@ -296,12 +297,12 @@ class Demo:
             snap = self.last_state
             if snap is None:
                 continue
-            if not killed and snap["t"] >= kill_one_at:
+            if not killed and snap["t"] >= kill_one_at and a.faults:
                 killed = True
                 target, expect = self.kill_target()
                 self.say(f">>> kill -9 {target} ({expect})")
                 os.killpg(self.procs[target].pid, signal.SIGKILL)
-            if not failed and snap["t"] >= fail_one_at:
+            if not failed and snap["t"] >= fail_one_at and a.faults:
                 failed = True
                 self.say(">>> kill -9 blue_2_action (its relaunch always fails): withdrawal, then its twin takes over")
                 os.killpg(self.procs["blue_2_action"].pid, signal.SIGKILL)
@@ -406,7 +407,8 @@ class Demo:
         print(f"report       {report}")
         print(f"match log    {self.out / 'match.jsonl'}  (format: docs/simulator.md)")
         print("=================================================")
-        return 0 if end and self.counts["relaunched"] >= 1 and self.counts["withdrawn"] >= 1 and not left else 1
+        shown = (self.counts["relaunched"] >= 1 and self.counts["withdrawn"] >= 1) or not self.args.faults
+        return 0 if end and shown and not left else 1
 
     def stop(self) -> int:
         """Stop everything: the ComMAg first (it must not relaunch what is being torn down), then the rest.
@@ -462,9 +464,12 @@ def main() -> int:
     parser.add_argument("--stagger", type=float, default=0.6, help="seconds between process starts")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--out", default="demo-output")
+    parser.add_argument(
+        "--no-faults", dest="faults", action="store_false", help="no kills (for measuring: bench/bench_realtime.py)"
+    )
     args = parser.parse_args()
-    if not 2 <= args.players <= 11:
-        parser.error("--players must be 2..11 (blue 2 has the redundant action provider)")
+    if not (2 if args.faults else 1) <= args.players <= 11:
+        parser.error("--players must be 2..11 (blue 2 has the redundant action provider), 1..11 with --no-faults")
     return Demo(args).run()
 
 

@@ -1,0 +1,84 @@
+"""What a player costs per cycle in a real-time match, with every process of the framework running.
+
+Plays the demo's match (tools/demo.py, without its faults) for 1, 3 and 11 players a side, in
+each layout: ``process`` (each component its own process, as before hosting) and ``team`` (a
+process per team: agents co-located in a component container), one after the other in this run.
+For each: CPU of every process (components, simulator, ComMAg, gateway) over a window of play,
+in ms per player per cycle; the cores used; the wall time of every 100 cycles (real time is
+10.0 s); and the cycles the decisions missed.
+
+    python bench/bench_realtime.py [--sizes 1 3 11] [--layouts process team] [--half-cycles 400]
+
+Slow by nature (real time): about 1.5 min per run, more with the process layout at 11 a side.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+DEMO = HERE.parent / "tools" / "demo.py"
+
+
+def run(players: int, layout: str, half_cycles: int, seed: int) -> dict:
+    with tempfile.TemporaryDirectory(prefix="cf-bench-rt-") as out:
+        argv = [sys.executable, str(DEMO), "--no-faults", "--players", str(players), "--layout", layout]
+        argv += ["--half-cycles", str(half_cycles), "--seed", str(seed), "--out", out]
+        t0 = time.monotonic()
+        done = subprocess.run(argv, capture_output=True, text=True, timeout=1800)
+        took = time.monotonic() - t0
+        path = Path(out) / "figures.json"
+        if not path.exists():
+            return {"error": f"exit {done.returncode}: {done.stdout[-500:]} {done.stderr[-500:]}"}
+        figures = json.loads(path.read_text())
+        figures["took"] = took
+        return figures
+
+
+def row(players: int, layout: str, f: dict) -> str:
+    if "error" in f or "cpu" not in f:
+        return f"| {players} | {layout} | failed: {f.get('error', 'no CPU window')[:80]} | | | | |"
+    cpu, wall, logs = f["cpu"], f.get("wall_per_100_cycles", {}), f.get("logs", {})
+    kinds = ", ".join(f"{k} {v:.2f}" for k, v in cpu["by_kind_ms_per_player_cycle"].items())
+    return (
+        f"| {players} | {layout} | **{cpu['ms_per_player_cycle']:.2f}** | {cpu['cores']:.2f} | {kinds} |"
+        f" {wall.get('median', float('nan')):.2f} / {wall.get('max', float('nan')):.2f} |"
+        f" {logs.get('missed', '?')} of {logs.get('cycles', '?')} |"
+    )
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", type=int, nargs="+", default=[1, 3, 11])
+    parser.add_argument("--layouts", nargs="+", default=["process", "team"])
+    parser.add_argument("--half-cycles", type=int, default=400)
+    parser.add_argument("--seed", type=int, default=0)
+    args = parser.parse_args()
+    window = f"cycles 50-{args.half_cycles // 2}"
+    print(f"CPU per player-cycle, everything included ({window} of a 2 x {args.half_cycles} match, real time)\n")
+    print(
+        "| players a side | layout | CPU ms per player-cycle | cores | of which (ms) | wall s per 100 cycles, median / max | decision cycles missed |"
+    )
+    print("|---:|---|---:|---:|---|---:|---:|")
+    results = {}
+    for players in args.sizes:
+        for layout in args.layouts:
+            figures = run(players, layout, args.half_cycles, args.seed)
+            results[(players, layout)] = figures
+            print(row(players, layout, figures), flush=True)
+    for players in args.sizes:
+        old, new = results.get((players, "process"), {}), results.get((players, "team"), {})
+        if "cpu" in old and "cpu" in new:
+            ratio = old["cpu"]["ms_per_player_cycle"] / new["cpu"]["ms_per_player_cycle"]
+            print(f"\n{players} a side: a process per team costs {ratio:.1f}x less CPU than a process per component")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
