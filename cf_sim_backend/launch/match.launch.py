@@ -1,12 +1,14 @@
 """A whole match on the embedded simulator, as `make demo` plays it (full ROS 2: `ros2 launch cf_sim_backend match.launch.py`).
 
 Starts the ComMAg (respawned if it dies), the gateway, both teams' perception, action and decision
-components (one process each, started one after another so that the ones already running keep
-their leases on a small machine), then the simulator. Parameters are the demo's.
+components, then the simulator. Parameters are the demo's. ``layout`` chooses the processes:
+``team`` (default: one component container per team, the ``players`` executable), ``player``
+(a container per player) or ``process`` (each component its own process, started one after
+another so that the ones already running keep their leases on a small machine).
 
-Arguments: players (per side, default 3), half_cycles (600), cycle_period (0.1 s = real time),
-seed (0), lease (2.0 s), stagger (0.6 s between component starts), gateway_port (7700),
-match_log (empty: none). Ctrl-C stops everything (components deregister first).
+Arguments: players (per side, default 11), layout (team), half_cycles (600), cycle_period
+(0.1 s = real time), seed (0), lease (2.0 s), stagger (0.6 s between process starts),
+gateway_port (7700), match_log (empty: none). Ctrl-C stops everything (components deregister first).
 """
 
 from launch import LaunchDescription
@@ -22,10 +24,35 @@ def _arg(context, name: str) -> str:
     return LaunchConfiguration(name).perform(context)
 
 
+def _containers(players: int, lease: float, stagger: float, per_player: bool) -> tuple[list, float]:
+    actions, delay = [], 2.0  # the ComMAg first
+    for side, team in TEAMS.items():
+        groups = [[n] for n in range(1, players + 1)] if per_player else [list(range(1, players + 1))]
+        for numbers in groups:
+            name = f"{team}_{numbers[0]}_players" if per_player else f"{team}_players"
+            params = {"side": side, "team": team, "team_size": players, "numbers": numbers, "lease": lease}
+            node = Node(package="cf_sim_backend", executable="players", name=name, parameters=[params], output="log")
+            actions.append(TimerAction(period=delay, actions=[node]))
+            delay += stagger * (2 if per_player else 1)
+    return actions, delay
+
+
 def _match(context):
     players = int(_arg(context, "players"))
     lease = float(_arg(context, "lease"))
     stagger = float(_arg(context, "stagger"))
+    layout = _arg(context, "layout")
+    if layout not in ("team", "player", "process"):
+        raise ValueError(f"layout must be team, player or process, not {layout!r}")
+    if layout != "process":
+        actions, delay = _containers(players, lease, stagger, per_player=layout == "player")
+    else:
+        actions, delay = _components(players, lease, stagger)
+    actions.append(TimerAction(period=delay + 3.0, actions=[_simulator(context, players)]))
+    return actions
+
+
+def _components(players: int, lease: float, stagger: float) -> tuple[list, float]:
     actions, delay = [], 2.0  # the ComMAg first
     for side, team in TEAMS.items():
         for number in range(1, players + 1):
@@ -44,7 +71,11 @@ def _match(context):
                 )
                 actions.append(TimerAction(period=delay, actions=[node]))
                 delay += stagger
-    simulator = Node(
+    return actions, delay
+
+
+def _simulator(context, players: int) -> Node:
+    return Node(
         package="cf_sim_backend",
         executable="sim",
         name="sim",
@@ -61,14 +92,13 @@ def _match(context):
         ],
         output="screen",
     )
-    actions.append(TimerAction(period=delay + 3.0, actions=[simulator]))
-    return actions
 
 
 def generate_launch_description() -> LaunchDescription:
     return LaunchDescription(
         [
-            DeclareLaunchArgument("players", default_value="3", description="players per side"),
+            DeclareLaunchArgument("players", default_value="11", description="players per side"),
+            DeclareLaunchArgument("layout", default_value="team", description="team, player or process"),
             DeclareLaunchArgument("half_cycles", default_value="600", description="cycles per half"),
             DeclareLaunchArgument("cycle_period", default_value="0.1", description="seconds per cycle"),
             DeclareLaunchArgument("seed", default_value="0", description="the simulator's random seed"),

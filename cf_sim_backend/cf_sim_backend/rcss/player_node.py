@@ -13,8 +13,8 @@ Each cycle it informs the perception subscribers, then runs one step of the acti
 ``synch_wait`` seconds for a decision's new request, acts, and answers ``(done)``; in real time it
 acts on the cycle's ``see`` (or right after ``sense_body`` when no see is due this cycle).
 
-The UDP socket is read by a thread that only queues datagrams and wakes the executor (a guard
-condition), so everything else runs on the executor, as in every other component.
+The UDP socket is read by a thread that only queues datagrams and wakes the executor (a
+Doorbell), so everything else runs on the executor, as in every other component.
 """
 
 from __future__ import annotations
@@ -31,6 +31,7 @@ from pydantic import Field
 from rclpy.node import Node
 
 from cf_commag.client import Agent, own_launch_command, run
+from cf_commag.doorbell import Doorbell
 from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.guarded import GuardedNode
 from cf_commag.params import ComponentParams
@@ -92,7 +93,7 @@ class RcssPlayerNode(GuardedNode, Node):
         self.attached = False  # the server talks to us as its player
         self.last_hello = time.monotonic()
         self.queue: deque[tuple[bytes, tuple]] = deque()
-        self.wake = self.create_guard_condition(self._drain)
+        self.wake = Doorbell(self, self._drain)
         self.act_timer = self.create_timer(float(self.p.synch_wait), self._on_act_timer)
         self.act_timer.cancel()
         self.see_timer = self.create_timer(float(self.p.see_wait), self._on_see_timer)
@@ -127,7 +128,7 @@ class RcssPlayerNode(GuardedNode, Node):
             except OSError:
                 return  # socket closed: shutting down
             self.queue.append((data, addr))
-            self.wake.trigger()
+            self.wake.ring()
 
     def _drain(self) -> None:
         while self.queue:
