@@ -8,8 +8,11 @@ found by lookup and answer agents of other processes, as components alone in a p
 
 from __future__ import annotations
 
+import json
 import os
 import signal
+
+from test_sim_match import start_sim_process
 
 from cf_commag.client import Agent
 from cf_commag.testing import Ros
@@ -90,3 +93,25 @@ def _running(pid: int) -> bool:
             return f.read().rsplit(b")", 1)[1].split()[0] not in (b"Z", b"X")
     except OSError:
         return False
+
+
+def test_two_containers_play_a_sync_match_every_player_acting_every_cycle(procs, probe, tag, tmp_path):
+    """Each team in one process: one state read per process, each cycle's commands and dones as one sample."""
+    start_commag(procs, tag, tmp_path)
+    for side in ("l", "r"):
+        argv = [executable("cf_sim_backend", "players"), "--ros-args", "-r", f"__node:=players_{side}_{tag}"]
+        for param in (f"commag:=/commag_{tag}", f"sim:=sim_{tag}", f"side:={side}", "team_size:=2", "lease:=2.0"):
+            argv += ["-p", param]
+        argv += ["-p", f"team:={'blue' if side == 'l' else 'red'}{tag}", "-p", f"name:=players_{side}_{tag}"]
+        procs.start(argv, f"players_{side}")
+    for side in ("blue", "red"):
+        for n in (1, 2):
+            probe.wait_kind(f"{side}{tag}_{n}_decision", "registered", timeout=60.0)
+    start_sim_process(procs, tag, tmp_path, mode="sync", left_size=2, right_size=2, half_cycles=300, sync_timeout=2.0)
+    log = tmp_path / "match.jsonl"
+    probe.spin_until(lambda: log.exists() and '"end"' in log.read_text(), timeout=180, what="the end of the match")
+    end = json.loads(log.read_text().splitlines()[-1])
+    # Lockstep: the simulator stepped when all four players' dones had come (in each process's one sample).
+    assert end["sync"]["steps"] >= 300 and end["sync"]["timeouts"] <= 5, end["sync"]
+    assert end["stats"]["kicks"]["l"] + end["stats"]["kicks"]["r"] > 0, end  # the decisions played the ball
+    assert "command refused" not in procs.log("sim")
