@@ -1,13 +1,15 @@
 """What a player costs per cycle in a real-time match, with every process of the framework running.
 
 Plays the demo's match (tools/demo.py, without its faults) for 1, 3 and 11 players a side, in
-each layout: ``process`` (each component its own process, as before hosting) and ``team`` (a
-process per team: agents co-located in a component container), one after the other in this run.
+each layout: ``process-single`` (each component its own process in rclpy's SingleThreadedExecutor:
+the framework before hosting), ``process`` (the same processes in the EventsExecutor, today's
+default) and ``team`` (a process per team: agents co-located in a component container), one after
+the other in this run.
 For each: CPU of every process (components, simulator, ComMAg, gateway) over a window of play,
 in ms per player per cycle; the cores used; the wall time of every 100 cycles (real time is
 10.0 s); and the cycles the decisions missed.
 
-    python bench/bench_realtime.py [--sizes 1 3 11] [--layouts process team] [--half-cycles 400]
+    python bench/bench_realtime.py [--sizes 1 3 11] [--layouts process-single process team] [--half-cycles 400]
 
 Slow by nature (real time): about 1.5 min per run, more with the process layout at 11 a side.
 """
@@ -16,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -28,10 +31,12 @@ DEMO = HERE.parent / "tools" / "demo.py"
 
 def run(players: int, layout: str, half_cycles: int, seed: int) -> dict:
     with tempfile.TemporaryDirectory(prefix="cf-bench-rt-") as out:
-        argv = [sys.executable, str(DEMO), "--no-faults", "--players", str(players), "--layout", layout]
+        process_layout, _, executor = layout.partition("-")
+        env = {**os.environ, "CF_EXECUTOR": executor or "events"}
+        argv = [sys.executable, str(DEMO), "--no-faults", "--players", str(players), "--layout", process_layout]
         argv += ["--half-cycles", str(half_cycles), "--seed", str(seed), "--out", out]
         t0 = time.monotonic()
-        done = subprocess.run(argv, capture_output=True, text=True, timeout=1800)
+        done = subprocess.run(argv, capture_output=True, text=True, timeout=1800, env=env)
         took = time.monotonic() - t0
         path = Path(out) / "figures.json"
         if not path.exists():
@@ -56,7 +61,7 @@ def row(players: int, layout: str, f: dict) -> str:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[1, 3, 11])
-    parser.add_argument("--layouts", nargs="+", default=["process", "team"])
+    parser.add_argument("--layouts", nargs="+", default=["process-single", "process", "team"])
     parser.add_argument("--half-cycles", type=int, default=400)
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
@@ -72,11 +77,14 @@ def main() -> int:
             figures = run(players, layout, args.half_cycles, args.seed)
             results[(players, layout)] = figures
             print(row(players, layout, figures), flush=True)
+    print()
     for players in args.sizes:
-        old, new = results.get((players, "process"), {}), results.get((players, "team"), {})
-        if "cpu" in old and "cpu" in new:
-            ratio = old["cpu"]["ms_per_player_cycle"] / new["cpu"]["ms_per_player_cycle"]
-            print(f"\n{players} a side: a process per team costs {ratio:.1f}x less CPU than a process per component")
+        new = results.get((players, "team"), {})
+        for layout in ("process-single", "process"):
+            old = results.get((players, layout), {})
+            if "cpu" in old and "cpu" in new:
+                ratio = old["cpu"]["ms_per_player_cycle"] / new["cpu"]["ms_per_player_cycle"]
+                print(f"{players} a side: team costs {ratio:.1f}x less CPU per player-cycle than {layout}")
     return 0
 
 

@@ -30,7 +30,8 @@ RCLPY_OWN = {"use_sim_time", "start_type_description_service"}  # declared by rc
 
 @pytest.fixture(scope="module")
 def system(tmp_path_factory):
-    """A ComMAg (not autostarted), a gateway, a simulator, one player's three components, an rcss adapter."""
+    """A ComMAg (not autostarted), a gateway, a simulator, one player's three components, an rcss adapter,
+    and another player's three components hosted in one process (the players container)."""
     tag = "t" + uuid.uuid4().hex[:8]
     tmp = tmp_path_factory.mktemp("ros_tools")
     procs, probe = Processes(tag, tmp), Probe(f"/commag_{tag}", tag)
@@ -49,6 +50,8 @@ def system(tmp_path_factory):
     procs.start([executable("cf_sim_backend", "sim"), "--ros-args", *sim, *common], "sim")
     rcss = ["-p", f"team:={team}", "-p", "number:=3", "-p", "port:=9", "-p", "server_timeout:=600.0", *common]
     procs.start([executable("cf_sim_backend", "rcss_player"), "--ros-args", *rcss], "rcss_player")
+    hosted = ["-p", "side:=l", "-p", "numbers:=[8]", "-p", f"team:={team}", "-p", f"sim:=sim_{tag}", *common]
+    procs.start([executable("cf_sim_backend", "players"), "--ros-args", *hosted], "players")
     yield {"tag": tag, "team": team, "commag": commag, "procs": procs, "probe": probe}
     probe.close()
     procs.kill_all()
@@ -89,6 +92,8 @@ def test_ros2_node_list_shows_each_component_under_its_agent_name(system):
     _bring_up(system)
     team = system["team"]
     wanted = {f"{team}_7_perception", f"{team}_7_action", f"{team}_7_decision", f"{team}_3_rcss_player"}
+    # Components hosted in one process (the players container) are nodes of their own, named alike.
+    wanted |= {f"{team}_players", f"{team}_8_perception", f"{team}_8_action", f"{team}_8_decision"}
     probe = system["probe"]
     probe.spin_until(lambda: wanted <= set(probe.node.get_node_names()), 60, f"nodes {wanted}")
 
@@ -104,6 +109,9 @@ def test_ros2_param_list_describe_get_on_every_node(system):
         f"{team}_7_action",
         f"{team}_7_decision",
         f"{team}_3_rcss_player",
+        f"{team}_players",
+        f"{team}_8_perception",
+        f"{team}_8_decision",
     ]
     for name in nodes:
         listed = probe.call(
@@ -126,6 +134,11 @@ def test_ros2_param_list_describe_get_on_every_node(system):
         GetParameters.Request(names=["number", "team"]),
     ).values
     assert (number[0].integer_value, number[1].string_value) == (7, team)
+    number = probe.call(
+        probe.node.create_client(GetParameters, f"/{team}_8_decision/get_parameters"),
+        GetParameters.Request(names=["number", "team"]),
+    ).values
+    assert (number[0].integer_value, number[1].string_value) == (8, team)  # a hosted node's own parameters
 
 
 def test_ros2_topic_echo_of_events_registry_diagnostics_and_an_inbox(system):
