@@ -33,6 +33,7 @@ from pathlib import Path
 
 import rclpy
 from ament_index_python.packages import get_package_prefix
+from proctree import cpu_seconds, descendants, running
 from rclpy.executors import SingleThreadedExecutor
 from std_msgs.msg import String
 
@@ -43,45 +44,11 @@ from cf_sim_backend.embedded.report import write_report
 from cf_sim_backend.embedded.topics import STATE_QOS
 
 TEAMS = {"l": "blue", "r": "red"}
-CLOCK_TICKS = os.sysconf("SC_CLK_TCK")
 PR_SET_CHILD_SUBREAPER = 36
 
 
 def exe(package: str, name: str) -> str:
     return str(Path(get_package_prefix(package)) / "lib" / package / name)
-
-
-def descendants(root: int) -> list[int]:
-    """Every process below ``root`` (this demo is their subreaper: orphans stay below it)."""
-    children: dict[int, list[int]] = {}
-    for entry in os.listdir("/proc"):
-        if entry.isdigit():
-            try:
-                with open(f"/proc/{entry}/stat", "rb") as f:
-                    stat = f.read()
-            except OSError:
-                continue
-            ppid = int(stat[stat.rfind(b")") + 2 :].split()[1])
-            children.setdefault(ppid, []).append(int(entry))
-    found, todo = [], [root]
-    while todo:
-        for child in children.get(todo.pop(), []):
-            found.append(child)
-            todo.append(child)
-    return found
-
-
-def cpu_seconds(pids: list[int]) -> dict[int, float]:
-    """User + system CPU of each process that still exists."""
-    cpu = {}
-    for pid in pids:
-        try:
-            with open(f"/proc/{pid}/stat", "rb") as f:
-                fields = f.read().rsplit(b")", 1)[1].split()
-        except OSError:
-            continue
-        cpu[pid] = (int(fields[11]) + int(fields[12])) / CLOCK_TICKS
-    return cpu
 
 
 class Demo:
@@ -425,7 +392,7 @@ class Demo:
         deadline = time.monotonic() + 15.0
         while time.monotonic() < deadline and any(p.poll() is None for p in self.procs.values()):
             time.sleep(0.2)
-        stragglers = [p for p in descendants(os.getpid()) if _alive(p)]
+        stragglers = [p for p in descendants(os.getpid()) if running(p)]
         for pid in stragglers:
             with contextlib.suppress(ProcessLookupError):
                 os.kill(pid, signal.SIGKILL)
@@ -440,14 +407,6 @@ class Demo:
         if stragglers:
             self.say(f"killed {len(stragglers)} process(es) that did not stop: {stragglers}")
         return len(stragglers)
-
-
-def _alive(pid: int) -> bool:
-    try:
-        with open(f"/proc/{pid}/stat", "rb") as f:
-            return f.read().rsplit(b")", 1)[1].split()[0] not in (b"Z", b"X")
-    except OSError:
-        return False
 
 
 def main() -> int:

@@ -30,6 +30,7 @@ import time
 from pathlib import Path
 
 from ament_index_python.packages import get_package_prefix
+from proctree import CpuMeter
 
 
 def udp_port_open(port: int) -> bool:
@@ -160,17 +161,27 @@ def run(args: argparse.Namespace) -> dict:
         for _ in range(30):  # let the decisions find their providers and move into formation
             trainer.poll()
         trainer.send("(change_mode kick_off_l)")
+        meter = CpuMeter(team_procs[0].pid)  # our team: its ComMAg, adapters, decisions, relaunches
+        meter.start()
+        sampled, start_cycle = time.monotonic(), trainer.time
         deadline = time.monotonic() + args.timeout
         kill = tuple(int(v) for v in args.kill.split("@")) if args.kill else None
         while trainer.mode != "time_over":
             trainer.poll()
+            if time.monotonic() - sampled > 1.0:
+                meter.sample()
+                sampled = time.monotonic()
             if kill and trainer.time >= kill[1] and "killed" not in summary:
                 summary["killed"] = {"number": kill[0], "cycle": trainer.time, "pid": kill_adapter(args.team, kill[0])}
             if server.poll() is not None:
                 raise RuntimeError(f"rcssserver exited with {server.returncode}: see {out / 'server.log'}")
             if time.monotonic() > deadline:
                 raise RuntimeError(f"the match did not end in {args.timeout} s (at cycle {trainer.time})")
+        meter.sample()
+        cycles = max(1, trainer.time - start_cycle)
         summary["seconds"] = round(time.monotonic() - t0, 1)
+        summary["our_cpu_ms_per_cycle"] = round(1000 * meter.used() / cycles, 2)
+        summary["our_cpu_ms_per_player_cycle"] = round(1000 * meter.used() / cycles / args.players, 2)
         end = time.monotonic() + 15
         while any(p.poll() is None for p in team_procs) and time.monotonic() < end:
             trainer.poll()

@@ -264,6 +264,19 @@ def test_skills_from_the_framework_language_run_on_the_belief():
         skill_for("kick", act.Kick(power=50.0, direction=0.0), Side.LEFT, world, me)
 
 
+def test_nothing_is_sent_once_time_is_over():
+    _, session = replay_acting([])
+    b = session.belief
+    world = b.world()
+    me = world.player(Side.LEFT, 1)
+    session.start(
+        skill_for("moveTo", act.MoveTo(target=AbsolutePositioning(x=0.0, y=0.0), speed=60.0), Side.LEFT, world, me)
+    )
+    b.mode = "time_over"
+    b.time += 1
+    assert session.act().commands == []
+
+
 # ---- bad input --------------------------------------------------------------------------
 
 

@@ -34,6 +34,7 @@ from cf_commag.client import Agent, own_launch_command, run
 from cf_commag.doorbell import Doorbell
 from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.guarded import GuardedNode
+from cf_commag.host import Host
 from cf_commag.params import ComponentParams
 from cf_sim_backend.rcss.belief import world_state
 from cf_sim_backend.rcss.session import PlayerSession
@@ -60,6 +61,8 @@ class RcssPlayerParams(ComponentParams):
     see_wait: float = Field(0.015, gt=0, description="real time: seconds to wait for a due see after sense_body")
     server_timeout: float = Field(10.0, gt=0, description="exit with an error when the server is silent this long (s)")
     stats_file: str = Field("", description="write the session's counters (JSON) here every 50 cycles and at exit")
+    decision: bool = Field(False, description="host this player's decision component in this process too")
+    team_size: int = Field(11, ge=1, le=11, description="players in the team (for the hosted decision's formation)")
 
 
 class RcssPlayerNode(GuardedNode, Node):
@@ -76,6 +79,7 @@ class RcssPlayerNode(GuardedNode, Node):
         self.session = PlayerSession(str(self.p.team), bool(self.p.goalie), int(self.p.version))
         self.agents: list[Agent] = []
         self.perception: PerceptionService | None = None  # once the server has given us a number
+        self.decision = None  # the hosted decision node (decision:=true)
         self.action: ActionService | None = None
         self.synch = False
         self.cycle_done = -1  # the last cycle acted on
@@ -181,7 +185,11 @@ class RcssPlayerNode(GuardedNode, Node):
         port = self.sock.getsockname()[1]
         launch = [*own_launch_command(), "--ros-args", "-p", f"number:={n}", "-p", "reconnect:=true"]
         launch = self.p.launch_command([*launch, "-p", f"local_port:={port}"])
+        # The player's agents share this process: one link to the ComMAg, and a hosted decision
+        # talks to them without DDS. Relaunched together (host metadata) when the process dies.
+        host = Host(self, name=safe_node_name(f"{team}_{n}_player"), commag=self.p.commag)
         common = {"team": team, "player_number": n, "lease": float(self.p.lease), "commag": self.p.commag}
+        common["host"] = host
         perception = Agent(
             self, name=f"{team}_{n}_perception", service_class="WorldModel", launch_command=launch, **common
         )
@@ -191,6 +199,27 @@ class RcssPlayerNode(GuardedNode, Node):
         self.perception = PerceptionService(perception, "the server has not sent a cycle")
         self.action = ActionService(action, lambda: (b.number, b.side or Side.LEFT), b.world, "", self._on_start)
         self.agents.extend([perception, action])  # spin() holds this very list
+        if self.p.decision:
+            self._host_decision(host, launch)
+
+    def _host_decision(self, host: Host, launch: list[str]) -> None:
+        """The player's decision component, unchanged, as a node of this process."""
+        from rclpy.parameter import Parameter
+
+        from cf_decision.decision_node import DecisionNode
+
+        b = self.session.belief
+        values = {"team": self.session.team, "number": b.number, "team_size": int(self.p.team_size)}
+        values |= {"commag": self.p.commag, "lease": float(self.p.lease)}
+        node = DecisionNode(
+            host=host,
+            launch=launch,
+            parameter_overrides=[Parameter(k, value=v) for k, v in values.items()],
+            use_global_arguments=False,  # our command line is the adapter's
+        )
+        self.decision = node
+        self.agents.append(node.agent)
+        self.executor.add_node(node)
 
     def _watch(self) -> None:
         now = time.monotonic()
@@ -279,6 +308,8 @@ class RcssPlayerNode(GuardedNode, Node):
 
     def close(self) -> None:
         self._write_stats()
+        if self.decision is not None:
+            self.decision.log_stats()
         if self.session.ready:
             self._send("(bye)")
         self.sock.close()

@@ -122,8 +122,8 @@ class PlayerSession:
     def act(self) -> Acted:
         """This cycle's commands: the current skill's step, at most one body command, once per cycle."""
         b = self.belief
-        if self.skill is None or not self.ready or self.acted == b.time:
-            return Acted()
+        if self.skill is None or not self.ready or self.acted == b.time or b.mode == "time_over":
+            return Acted()  # (after time over the server executes nothing: a command then is only noise)
         world = b.world()
         me = world.player(b.side, b.number)
         step = self.skill.step(world, me)

@@ -1,13 +1,14 @@
 """Our whole team on a running rcssserver: the ComMAg, 11 rcss_player adapters and 11 cf_decision components.
 
-    ros2 run cf_sim_backend rcss_team -- --team CF --port 6000 [--players 11] [--no-commag] [--log-dir DIR]
+    ros2 run cf_sim_backend rcss_team -- --team CF --port 6000 [--players 11] [--layout player] [--no-commag]
 
 (on the bare machine: ``install/cf_sim_backend/lib/cf_sim_backend/rcss_team --team CF``).
 
 rcssserver gives shirt numbers in the order players connect, so the adapters start one after
 another: each next one once the previous has its number (its perception registered with the
-ComMAg); number 1 connects as the goalkeeper. Then the decision components start, one per
-player, unchanged from the embedded simulator's team. It runs until the server's match is over
+ComMAg); number 1 connects as the goalkeeper. Each player's decision component, unchanged from
+the embedded simulator's team, runs in its adapter's process (``--layout player``, the default:
+hosted, see docs/hosting.md) or in a process of its own (``--layout process``). It runs until the server's match is over
 (every adapter has exited) or until Ctrl-C, then stops everything it started.
 """
 
@@ -54,6 +55,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         "--synch-wait", type=float, default=0.1, help="synch mode: each adapter's wait for its decision (s)"
     )
     ap.add_argument("--join-timeout", type=float, default=30.0, help="seconds each adapter may take to join")
+    ap.add_argument(
+        "--layout",
+        choices=("player", "process"),
+        default="player",
+        help="player: each adapter hosts its player's decision; process: decisions in processes of their own",
+    )
     return ap.parse_args(argv)
 
 
@@ -114,11 +121,16 @@ class TeamProcesses:
             argv = [executable("cf_sim_backend", "rcss_player"), *ros, f"team:={a.team}", "-p", f"host:={a.host}"]
             argv += ["-p", f"port:={a.port}", "-p", f"commag:={a.commag}", "-p", f"goalie:={str(n == 1).lower()}"]
             argv += ["-p", f"lease:={a.lease}", "-p", f"synch_wait:={a.synch_wait}"]
+            if a.layout == "player":
+                argv += ["-p", "decision:=true", "-p", f"team_size:={a.players}"]
             argv += ["-r", f"__node:={safe_node_name(f'{a.team}_{n}_rcss_player')}"]  # the server gives n in order
             self.start(f"{a.team}_{n}_rcss_player", argv + stats)
             self.wait_for(f"{a.team}_{n}_perception", f"{a.team}_{n}_rcss_player", a.join_timeout)
             print(f"player {n} joined", flush=True)
         for n in range(1, a.players + 1):
+            if a.layout == "player":  # hosted by the adapter: registered once it has its number
+                self.wait_for(f"{a.team}_{n}_decision", f"{a.team}_{n}_rcss_player", a.join_timeout)
+                continue
             argv = [executable("cf_decision", "decision"), *ros, f"team:={a.team}", "-p", f"number:={n}"]
             argv += ["-p", f"team_size:={a.players}", "-p", f"commag:={a.commag}", "-p", f"lease:={a.lease}"]
             # One after another too: eleven Python processes starting at once starve the running adapters.
