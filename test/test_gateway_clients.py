@@ -1,14 +1,17 @@
-"""Agents in Java, Prolog and Python join through the installed gateway and talk with ROS agents.
+"""Agents in C++, Java, Prolog and Python join through the installed gateway and talk with ROS agents.
 
-Needs `java` (JDK 17) and `swipl` (Debian swi-prolog-nox). .ci/run installs them and sets
-CF_REQUIRE_FOREIGN_CLIENTS=1, so in CI these tests fail rather than skip when one is missing.
+Needs `g++` and `cmake`, `java` (JDK 17) and `swipl` (Debian g++ cmake openjdk-17-jdk-headless
+swi-prolog-nox). .ci/run installs them and sets CF_REQUIRE_FOREIGN_CLIENTS=1, so in CI these
+tests fail rather than skip when one is missing.
 """
 
 from __future__ import annotations
 
 import os
+import random
 import shutil
 import signal
+import subprocess
 import time
 from pathlib import Path
 
@@ -17,6 +20,7 @@ import pytest
 from cf_commag.client import Agent
 from cf_commag.gateway_client import GatewayClient, GatewayError
 from cf_lang.acl import Performative
+from cf_lang.sexp import Keyword, SexpError, Symbol, dumps, loads, quote
 from cf_system import start_commag, start_component, start_gateway
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -27,9 +31,8 @@ def need(tool: str) -> str:
     if path is None:
         if os.environ.get("CF_REQUIRE_FOREIGN_CLIENTS") == "1":
             pytest.fail(f"{tool} is required here (CF_REQUIRE_FOREIGN_CLIENTS=1) but not installed")
-        pytest.skip(
-            f"{tool} is not installed (Debian: {'openjdk-17-jdk-headless' if tool == 'java' else 'swi-prolog-nox'})"
-        )
+        package = {"java": "openjdk-17-jdk-headless", "swipl": "swi-prolog-nox"}.get(tool, tool)
+        pytest.skip(f"{tool} is not installed (Debian: {package})")
     return path
 
 
@@ -151,3 +154,133 @@ def test_a_hung_ros_agent_stalls_nobody_and_loses_nothing(framework, procs, prob
             os.kill(proc.pid, signal.SIGCONT)
         answered = {flood.receive().in_reply_to for _ in range(n)}  # each one answered: none lost
         assert answered == {f"r{i}" for i in range(1, n + 1)}
+
+
+# ---- C++ ---------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def cpp(tmp_path_factory):
+    """clients/cpp built with CMake, as a team would: the example agent and the reader check."""
+    need("g++")
+    cmake = need("cmake")
+    build = tmp_path_factory.mktemp("cpp-build")
+    subprocess.run([cmake, "-S", str(ROOT / "clients/cpp"), "-B", str(build)], check=True, capture_output=True)
+    done = subprocess.run([cmake, "--build", str(build)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "warning" not in done.stdout + done.stderr, done.stdout + done.stderr
+    return build
+
+
+def test_cpp_agent(framework, procs, probe, tag, cpp):
+    name = f"cpp_{tag}"
+    argv = [str(cpp / "cf_example"), "127.0.0.1", str(framework), name]
+    reply = run_foreign_agent(procs, probe, tag, argv, "cpp", name)
+    assert reply.content.startswith("(done-by-cpp exec ")  # it read the request's content as an expression
+    probe.wait_kind(name, "deregistered")  # (bye) deregisters
+
+
+def _form(value) -> str:
+    """What cf_sexp_check prints for a value the reference reader gave."""
+    if isinstance(value, list):
+        return "(" + " ".join(_form(v) for v in value) + ")"
+    if isinstance(value, Keyword):
+        return f"K:{value.name}"
+    if isinstance(value, Symbol):
+        return f"Y:{value.name}"
+    if isinstance(value, bool):
+        raise AssertionError("the reader gives no booleans")
+    if isinstance(value, int):
+        return f"I:{value}"
+    if isinstance(value, float):
+        return f"F:{format(value, '.17g')}"
+    return f"S:{quote(value)}"
+
+
+def _random_text(rng: random.Random, depth: int = 0) -> str:
+    atoms = [
+        "a",
+        "-",
+        "x1",
+        ":k",
+        ":player-number",
+        "0",
+        "-0",
+        "+007",
+        "12",
+        "-3.5",
+        ".5",
+        "5.",
+        "1e3",
+        "2E-2",
+        "1e",
+        "inf",
+        "nan",
+        "1_000",
+        '""',
+        '"a b"',
+        '"q\\"uote"',
+        '"line\\nbreak"',
+        '"tab\\t"',
+        "é",
+        "T10:20",
+    ]
+    if depth > 4 or rng.random() < 0.4:
+        return rng.choice(atoms)
+    items = [_random_text(rng, depth + 1) for _ in range(rng.randint(0, 4))]
+    return "(" + rng.choice([" ", "  ", "\t", "\n", " ; note\n"]).join(items) + ")"
+
+
+def _mutate(rng: random.Random, text: str) -> str:
+    pos = rng.randint(0, len(text))
+    return text[:pos] + rng.choice(['"', "(", ")", "\\", ";", ":", "\n", " ", "\\q", ""]) + text[pos + 1 :]
+
+
+def test_cpp_reader_reads_what_the_reference_reader_reads(cpp):
+    """docs/language.md section 1: the same texts give the same expressions, or both an error."""
+    rng = random.Random(20261122)
+    texts = [
+        "(exec Player kick :playerNumber 9 :whichTeam our :power 70.5 :direction -0.2)",
+        '(inform :sender (agent-identifier :name a) :content "(done 1)" :reply-with "r\\"1")',
+        "(a ; a comment\n b)",
+        "(a ;c)",
+        '(a"b")',
+        '("\\q")',
+        "(a)b",
+        ":",
+        "1e999",
+        "(" * 64 + ")" * 64,
+        "(" * 65 + ")" * 65,
+        "1" * 4000,
+        "1" * 4001,
+        "",
+        "   ",
+        ")",
+        '"unclosed',
+        "(unclosed",
+    ]
+    for _ in range(1500):
+        text = _random_text(rng)
+        texts.append(text)
+        texts.append(_mutate(rng, text))
+    texts += [dumps(loads(t)) for t in texts[:200] if _reads(t)]  # what the writer writes reads back
+    done = subprocess.run(
+        [str(cpp / "cf_sexp_check")], input="\0".join(texts).encode(), capture_output=True, timeout=60
+    )
+    lines = done.stdout.decode().splitlines()
+    assert len(lines) == len(texts)
+    for text, line in zip(texts, lines, strict=True):
+        try:
+            expected = "OK " + _form(loads(text))
+        except SexpError:
+            assert line.startswith("ERROR "), (text, line)
+            continue
+        assert line == expected, (text, line)
+
+
+def _reads(text: str) -> bool:
+    try:
+        loads(text)
+    except SexpError:
+        return False
+    return True

@@ -146,6 +146,8 @@ def _classify(tok):
                 if value - value != 0.0:  # inf from an exponent such as 1e999
                     raise _Bad
                 return value
+            if len(tok) > _MAX_INT_DIGITS and len(tok.lstrip("+-")) > _MAX_INT_DIGITS:
+                raise _Bad  # the spec's limit (Python's own would allow 4,300)
             return int(tok)
         except ValueError:
             if len(tok) > _MAX_INT_DIGITS and _INTEGER_RE.fullmatch(tok):

@@ -102,6 +102,11 @@ def test_limits():
     with pytest.raises(SexpLimitError, match="nesting too deep"):
         loads("((((a))))", limits=Limits(max_depth=3))
     assert loads("((((a))))", limits=Limits(max_depth=4)) == [[[["a"]]]]
+    # Integers of at most 4,000 digits (docs/language.md); Python alone would take 4,300.
+    assert loads("-" + "7" * 4000) == -int("7" * 4000)
+    for digits in (4001, 4300, 5000):
+        with pytest.raises(SexpLimitError, match="integer too long"):
+            loads("(n " + "7" * digits + ")")
     with pytest.raises(SexpLimitError, match="integer too long"):
         loads("1" * 5000)
 

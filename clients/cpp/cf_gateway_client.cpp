@@ -194,7 +194,7 @@ private:
         Value v;
         v.text = w;
         if (w[0] == ':') {
-            if (w.size() == 1) fail_at("a keyword needs a name after ':'", start);
+            if (w.size() == 1 || w[1] == ':') fail_at("a keyword needs a name after ':'", start);
             v.kind = Value::Kind::Keyword;
             return v;
         }

@@ -52,7 +52,10 @@ int main() {
             std::string read = form(cf::read(text));
             std::cout << "OK " << read << "\n";
         } catch (const cf::SyntaxError& e) {
-            std::cout << "ERROR " << e.line << ":" << e.column << " " << e.what() << "\n";
+            std::string why = e.what();
+            for (char& c : why)
+                if (c == '\n' || c == '\r') c = ' ';  // one line per text
+            std::cout << "ERROR " << e.line << ":" << e.column << " " << why << "\n";
         }
         if (end == all.size()) break;
         start = end + 1;
