@@ -1,7 +1,7 @@
 """A short match of our team on a real rcssserver, for the integration tests and the benchmark.
 
     python tools/rcss_match.py --server $RCSSSERVER [--players 11] [--opponents 0] [--cycles 300]
-                               [--realtime] [--out DIR] [--no-isolate]
+                               [--realtime] [--layout player|process] [--out DIR] [--no-isolate]
 
 It starts the server (synch mode unless --realtime; trainer with referee; logs off; its own
 config dir), our team with ``rcss_team`` (the ComMAg, the adapters, the decisions), optionally
@@ -143,7 +143,7 @@ def run(args: argparse.Namespace) -> dict:
         teams = [(args.team, args.players)] + ([(args.opponent, args.opponents)] if args.opponents else [])
         team_procs = []
         for i, (name, players) in enumerate(teams):
-            argv = [team_exe, "--team", name, "--port", str(port), "--players", str(players)]
+            argv = [team_exe, "--team", name, "--port", str(port), "--players", str(players), "--layout", args.layout]
             argv += ["--log-dir", str(out / f"logs-{name}"), "--stats-dir", str(out / "stats")]
             if i > 0:
                 argv += ["--no-commag"]  # one ComMAg serves both teams
@@ -214,6 +214,9 @@ def main() -> int:
     ap.add_argument("--cycles", type=int, default=300, help="match length (multiple of 10)")
     ap.add_argument("--port", type=int, default=6000)
     ap.add_argument("--realtime", action="store_true", help="real time (100 ms cycles) instead of synch mode")
+    ap.add_argument(
+        "--layout", choices=("player", "process"), default="player", help="rcss_team's layout (see rcss_team --help)"
+    )
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds the match may take")
     ap.add_argument("--out", default="", help="where logs and counters go (default: a new temp dir)")
     ap.add_argument("--kill", default="", help="N@CYCLE: kill -9 our player N's adapter at that cycle")
