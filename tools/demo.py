@@ -9,7 +9,8 @@ come back; with ``--layout process``, one component) and takes away an action pr
 relaunch keeps failing (the ComMAg withdraws it and the player's requests reroute to its
 redundant twin). It prints the match time, score and registry events as they happen, a summary
 at the end (with the CPU each player cost per cycle and the wall time of every 100 cycles),
-writes an HTML match report, and leaves no process behind.
+writes an HTML match report with an animated replay, the match as an rcssserver game log (.rcg),
+and leaves no process behind.
 
     python tools/demo.py [--players 11] [--half-cycles 600] [--layout team] [--cycle 0.1] [--out demo-output]
 
@@ -40,6 +41,7 @@ from std_msgs.msg import String
 from cf_commag.respawn import Respawner
 from cf_commag.transport.qos import EVENTS_QOS
 from cf_interfaces.msg import RegistryEvent
+from cf_sim_backend.embedded.rcg import export as export_rcg
 from cf_sim_backend.embedded.report import write_report
 from cf_sim_backend.embedded.topics import STATE_QOS
 
@@ -102,6 +104,7 @@ class Demo:
         self.events.append(
             {
                 "t": time.monotonic() - self.t0,
+                "cycle": (self.last_state or {}).get("t", 0),  # on the match clock, for the replay
                 "name": ev.record.name,
                 "kind": ev.kind_name,
                 "state": ev.record.state,
@@ -334,6 +337,7 @@ class Demo:
         end = json.loads(lines[-1]) if lines and '"end"' in lines[-1] else {}
         (self.out / "registry-events.json").write_text(json.dumps(self.events, indent=1))
         report = write_report(self.out / "match.jsonl", self.events, self.out / "report.html")
+        rcg = export_rcg(self.out / "match.jsonl", self.out / "match.rcg")
         figures = self.figures()
         left = self.stop()
         said = self.from_logs()
@@ -373,6 +377,7 @@ class Demo:
         print(f"processes    {'none left behind' if not left else f'{left} left behind and killed'}")
         print(f"report       {report}")
         print(f"match log    {self.out / 'match.jsonl'}  (format: docs/simulator.md)")
+        print(f"game log     {rcg}  (rcssserver's .rcg: replay it in rcssmonitor or soccerwindow2)")
         print("=================================================")
         shown = (self.counts["relaunched"] >= 1 and self.counts["withdrawn"] >= 1) or not self.args.faults
         return 0 if end and shown and not left else 1

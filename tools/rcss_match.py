@@ -1,7 +1,7 @@
 """A short match of our team on a real rcssserver, for the integration tests and the benchmark.
 
     python tools/rcss_match.py --server $RCSSSERVER [--players 11] [--opponents 0] [--cycles 300]
-                               [--realtime] [--layout player|process] [--out DIR] [--no-isolate]
+                               [--realtime] [--layout player|process] [--out DIR] [--no-isolate] [--game-log]
 
 It starts the server (synch mode unless --realtime; trainer with referee; logs off; its own
 config dir), our team with ``rcss_team`` (the ComMAg, the adapters, the decisions), optionally
@@ -112,7 +112,7 @@ def run(args: argparse.Namespace) -> dict:
         f"server::synch_mode={'false' if args.realtime else 'true'}",
         "server::auto_mode=false",
         "server::coach_w_referee=true",
-        "server::game_logging=false",
+        f"server::game_logging={'true' if args.game_log else 'false'}",
         "server::text_logging=false",
         f"server::half_time={halves}",
         "server::nr_normal_halfs=1",
@@ -221,6 +221,7 @@ def main() -> int:
     ap.add_argument("--out", default="", help="where logs and counters go (default: a new temp dir)")
     ap.add_argument("--kill", default="", help="N@CYCLE: kill -9 our player N's adapter at that cycle")
     ap.add_argument("--no-isolate", action="store_true", help="do not run in a private network namespace")
+    ap.add_argument("--game-log", action="store_true", help="let the server write its game log (.rcg) into --out")
     args = ap.parse_args()
     if not args.server:
         ap.error("name the rcssserver binary with --server or RCSSSERVER")

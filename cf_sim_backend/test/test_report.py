@@ -6,7 +6,10 @@ rendering check fails rather than skips when the browser is missing.
 
 from __future__ import annotations
 
+import html
+import json
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -92,14 +95,13 @@ def _png_colours(png: bytes) -> int:
     return len({row[i : i + channels] for row in rows for i in range(0, len(row), channels * 5)})
 
 
-def test_report_renders_in_headless_chromium(report: Path, tmp_path: Path):
+def _chromium(tmp_path: Path, *args: str) -> subprocess.CompletedProcess:
     browser = shutil.which("chromium") or shutil.which("chromium-browser")
     if browser is None:
         if os.environ.get("CF_REQUIRE_CHROMIUM") == "1":
             pytest.fail("chromium is required here (CF_REQUIRE_CHROMIUM=1) but not installed")
         pytest.skip("chromium is not installed (Debian package: chromium)")
-    shot = tmp_path / "report.png"
-    subprocess.run(
+    return subprocess.run(
         [
             browser,
             "--headless",
@@ -111,12 +113,40 @@ def test_report_renders_in_headless_chromium(report: Path, tmp_path: Path):
             "--disable-component-update",
             "--disable-sync",
             f"--user-data-dir={tmp_path / 'profile'}",
-            "--window-size=1000,1800",
-            f"--screenshot={shot}",
-            report.as_uri(),
+            *args,
         ],
         check=True,
         capture_output=True,
         timeout=120,
     )
+
+
+def test_report_renders_in_headless_chromium(report: Path, tmp_path: Path):
+    shot = tmp_path / "report.png"
+    _chromium(tmp_path, "--window-size=1000,1800", f"--screenshot={shot}", report.as_uri())
     assert shot.exists() and _png_colours(shot.read_bytes()) > 20
+
+
+def test_the_replay_loads_steps_and_plays_in_headless_chromium_without_script_errors(report: Path, tmp_path: Path):
+    """The page's own self-test (``#selftest``): step 41 cycles, play at 8x, record what the canvas showed."""
+    dom = _chromium(tmp_path, "--virtual-time-budget=6000", "--dump-dom", report.as_uri() + "#selftest").stdout.decode()
+    assert "data-replay-errors" not in dom, re.findall(r'data-replay-errors="[^"]*"', dom)
+    found = re.search(r'data-replay-selftest="([^"]*)"', dom)
+    assert found, "the replay's self-test did not finish"
+    result = json.loads(html.unescape(found[1]))
+    assert result["afterSteps"] == 41 and result["afterPlay"] > 41  # stepped, then played on by itself
+    assert len({result["first"], result["stepped"], result["played"]}) == 3  # each a different picture
+    assert result["events"] >= 1  # the registry events up to that cycle are listed beside it
+
+
+def test_the_replay_carries_every_cycle_and_the_registry_events_on_the_match_clock(report: Path):
+    text = report.read_text()
+    data = json.loads(re.search(r'<script type="application/json" id="replay-data">(.*?)</script>', text)[1])
+    _, cycles, _ = read_log(report.parent / "match.jsonl")
+    assert len(data["frames"]) == len(cycles)
+    assert [e[:3] for e in data["events"]] == [
+        [5, "blue_1_action", "registered"],
+        [90, "blue_1_action", "suspect"],
+        [91, "blue_1_action", "relaunching"],
+        [100, "blue_1_action", "relaunched"],
+    ]

@@ -1,8 +1,9 @@
 """The match report: one self-contained HTML page with pictures of a match (ROS-free).
 
 From a match log (docs/simulator.md) and, optionally, the ComMAg's registry
-events: the score and statistics, the ball's heat map and path with shots and
-goals, every player's trajectory, and a timeline of each component's states.
+events: the score and statistics, an animated replay of the match with the
+registry events on its timeline (replay.py), the ball's heat map and path with
+shots and goals, every player's trajectory, and a timeline of each component's states.
 
     python -m cf_sim_backend.embedded.report match.jsonl [registry-events.json] [report.html]
 """
@@ -16,6 +17,7 @@ from collections import Counter
 from pathlib import Path
 
 from cf_lang.ontology import FIELD
+from cf_sim_backend.embedded.replay import replay
 
 SCALE = 8.0  # pixels per metre
 COLORS = {"l": "#1f5fbf", "r": "#c8302c"}
@@ -203,6 +205,9 @@ figcaption{{color:#555;font-size:14px}} .score{{font-size:32px;font-weight:bold}
 <p>{len(cycles)} cycles logged. Goals: {", ".join(f"{html.escape(teams.get(side, side))} at cycle {t}" for t, side in goals) or "none"}.</p>
 <table><tr><th></th><th>{html.escape(teams.get("l", "left"))}</th><th>{html.escape(teams.get("r", "right"))}</th></tr>
 {stat_row("kicks", "kicks")}{stat_row("shots", "shots")}{stat_row("possession", "possession", True)}</table>
+<h2>Replay</h2>
+{replay(header, cycles, events or [], field=_dimensions(header), colors=COLORS, state_colors=STATE_COLORS)}
+<h2>Pictures</h2>
 {heat_and_path(header, cycles)}
 {trajectories(header, cycles)}
 <h2>Components</h2>
