@@ -29,6 +29,7 @@ setup(
             "gateway = cf_commag.gateway_node:main",
             "demo_component = cf_commag.demo_component:main",
             "supervise = cf_commag.respawn:main",
+            "launch_agent = cf_commag.launch_agent:main",
         ]
     },
 )

@@ -75,7 +75,10 @@ def test_ros2_lifecycle_get_set_list_on_the_running_commag(system):
     # Active now: the components register, and `ros2 service call .../lookup` finds them.
     team = system["team"]
     everything = {"direction": Lookup.Request.SPECIFIC, "team": team}
-    probe.spin_until(lambda: len(probe.lookup("Service", **everything)) >= 3, 90, "the player's components registered")
+    seven = {f"{team}_7_perception", f"{team}_7_action", f"{team}_7_decision"}
+    probe.spin_until(
+        lambda: seven <= set(probe.lookup("Service", **everything)), 90, "player 7's components registered"
+    )
     answer = probe.call(probe.lookup_client, Lookup.Request(service_class="Kick", team=team, player_number=7))
     assert answer.ok and [p.name for p in answer.providers] == [f"{team}_7_action"]
 

@@ -16,16 +16,17 @@ from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackRet
 
 from cf_interfaces.msg import Registry as RegistryMsg
 from cf_interfaces.msg import RegistryEvent
-from cf_interfaces.srv import Deregister, Lookup, Register
+from cf_interfaces.srv import Deregister, Launch, Lookup, Register
+from cf_lang.taxonomy import Direction
 
 from . import store
 from .convert import event_to_msg, to_msg, to_query, to_record
 from .guarded import GuardedNode
 from .launcher import Launcher, LaunchPolicy, workspace_roots
 from .params import NodeParams
-from .process import running, running_command
-from .records import EventKind, Record, State
-from .registry import Event, Registry, RegistryConfig, launch_key
+from .process import machine_of, on_this_machine, running, running_command
+from .records import EventKind, Query, Record, State
+from .registry import Event, LaunchError, Registry, RegistryConfig, launch_key
 from .runtime import run
 from .transport.qos import EVENTS_QOS, SERVICE_QOS, SNAPSHOT_QOS
 
@@ -92,6 +93,8 @@ class CommagNode(GuardedNode, LifecycleNode):
         self._active = False
         self._registry: Registry | None = None
         self._launcher: Launcher | None = None
+        self._policy: LaunchPolicy | None = None
+        self._launch_clients: dict = {}  # launch agent name -> its Launch client
         self._tick_timers = []
         self._commag_services = []
         self._store_path: Path | None = None
@@ -110,7 +113,7 @@ class CommagNode(GuardedNode, LifecycleNode):
             return TransitionCallbackReturn.FAILURE
         self._cfg = cfg
         roots = cfg.allowed_roots or workspace_roots()
-        policy = LaunchPolicy(allowed_roots=roots, allowed_commands=cfg.allowed_commands)
+        policy = self._policy = LaunchPolicy(allowed_roots=roots, allowed_commands=cfg.allowed_commands)
         log_dir = Path(cfg.log_dir) if cfg.log_dir else _ros_home() / "log" / "cf_commag"
         self._launcher = Launcher(policy=policy, log_dir=log_dir)
         self._registry = Registry(
@@ -125,7 +128,7 @@ class CommagNode(GuardedNode, LifecycleNode):
                 alive_grace=cfg.alive_grace,
             ),
             launch=self._launch,
-            check_launch=policy.check,
+            check_launch=self._check_launch,
             cancel_launch=lambda key: self._launcher.kill(key),
             alive=lambda record: running(record.metadata),
         )
@@ -222,14 +225,55 @@ class CommagNode(GuardedNode, LifecycleNode):
 
     # ---- periodic work -----------------------------------------------------
 
+    def _check_launch(self, record: Record) -> str | None:
+        """Whether a record's launch command may run: ours to judge on this machine, its launch agent's elsewhere."""
+        if not on_this_machine(record.metadata):
+            return None
+        return self._policy.check(record.launch_command)
+
     def _launch(self, record: Record) -> None:
-        """Start a component (or its host) again; a hung process still running that command is killed first."""
+        """Start a component (or its host) again; a hung process still running that command is killed first.
+
+        A component of another machine is started there by that machine's launch agent.
+        """
+        if not on_this_machine(record.metadata):
+            self._launch_remote(record)
+            return
         stale = running_command(record.metadata, record.launch_command)
         if stale is not None:
             self.get_logger().warning(f"{record.name}: killing its hung process {stale} before relaunching it")
             with contextlib.suppress(OSError):
                 os.kill(stale, signal.SIGKILL)
         self._launcher.launch(launch_key(record), record.launch_command)
+
+    def _launch_remote(self, record: Record) -> None:
+        machine = machine_of(record.metadata)
+        agents = [
+            e.name
+            for e in self._registry.lookup(Query("Launcher", Direction.EXACT))
+            if e.state is State.HEALTHY and machine_of(e.record.metadata) == machine
+        ]
+        if not agents:
+            raise LaunchError(f"no launch agent on machine {machine!r} (run launch_agent there)")
+        name = agents[0]
+        client = self._launch_clients.get(name)
+        if client is None:
+            client = self._launch_clients[name] = self.create_client(Launch, f"/{name}/launch", qos_profile=SERVICE_QOS)
+        if not client.service_is_ready():
+            raise LaunchError(f"launch agent {name} on {machine!r} does not answer")
+        key = launch_key(record)
+        future = client.call_async(Launch.Request(name=key, argv=list(record.launch_command)))
+
+        def done(f) -> None:
+            answer = f.result() if f.exception() is None else None
+            if answer is not None and answer.ok:
+                self.get_logger().info(f"{key}: started by {name} on {machine!r} (pid {answer.pid} there)")
+                return
+            why = answer.reason if answer is not None else repr(f.exception())
+            reason = f"launch agent {name} on {machine!r}: {why}"
+            self._emit(self._registry.launch_exited(key, -1, now=time.monotonic(), reason=reason))
+
+        future.add_done_callback(done)
 
     def _on_tick(self) -> None:
         try:

@@ -5,17 +5,39 @@ in clock ticks after boot, ``machine``: the kernel's boot id). The ComMAg, on th
 reads ``/proc`` to see whether that process still runs: a component that misses its lease
 while its process runs is starved or hung, not dead, and is given time before it is relaunched.
 Elsewhere (another machine, another pid namespace) it cannot tell, and goes by the lease alone.
+
+Each record also names its machine (``machine_name``: ``$CF_MACHINE``, else the host name). A
+component of another machine is relaunched there, by that machine's launch agent
+(launch_agent.py), since a ComMAg can start processes only on its own.
 """
 
 from __future__ import annotations
 
 import os
+import socket
 from collections.abc import Iterable
 
 HOST_KEY = "host"  # the host process's name: agents of one host are relaunched together
 PID_KEY = "pid"
 STARTED_KEY = "started"
 MACHINE_KEY = "machine"
+MACHINE_NAME_KEY = "machine_name"
+
+
+def machine_name() -> str:
+    """The name of the machine this process runs on: ``$CF_MACHINE``, else the host name."""
+    return os.environ.get("CF_MACHINE") or socket.gethostname()
+
+
+def machine_of(metadata: Iterable[tuple[str, str]]) -> str:
+    """The machine a record's metadata names ("" if none: taken to be the ComMAg's own)."""
+    return dict(metadata).get(MACHINE_NAME_KEY, "")
+
+
+def on_this_machine(metadata: Iterable[tuple[str, str]]) -> bool:
+    """Whether the record's process runs on this machine (a record that names none is taken to)."""
+    name = machine_of(metadata)
+    return not name or name == machine_name()
 
 
 def machine_id() -> str:
@@ -43,7 +65,7 @@ def process_start(pid: int) -> int | None:
 def process_identity() -> dict[str, str]:
     """Metadata naming this process."""
     pid = os.getpid()
-    ident = {PID_KEY: str(pid)}
+    ident = {PID_KEY: str(pid), MACHINE_NAME_KEY: machine_name()}
     started = process_start(pid)
     if started is not None:
         ident[STARTED_KEY] = str(started)
@@ -57,7 +79,7 @@ def running(metadata: Iterable[tuple[str, str]]) -> bool | None:
     """Whether the process the metadata names still runs: True, False, or None (cannot tell from here)."""
     meta = dict(metadata)
     pid, machine = meta.get(PID_KEY, ""), meta.get(MACHINE_KEY, "")
-    if not pid.isdigit() or not machine or machine != machine_id():
+    if not pid.isdigit() or not machine or machine != machine_id() or not on_this_machine(meta.items()):
         return None
     started = process_start(int(pid))
     if started is None:

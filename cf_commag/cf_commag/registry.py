@@ -114,7 +114,7 @@ class Registry:
         config: RegistryConfig | None = None,
         *,
         launch: Callable[[Record], None] | None = None,
-        check_launch: Callable[[tuple[str, ...]], str | None] | None = None,
+        check_launch: Callable[[Record], str | None] | None = None,
         cancel_launch: Callable[[str], None] | None = None,
         alive: Callable[[Record], bool | None] | None = None,
     ):
@@ -140,7 +140,7 @@ class Registry:
         cfg = self.config
         reason = check_record(record, min_lease=cfg.min_lease, max_lease=cfg.max_lease)
         if reason is None and record.launch_command and self._check_launch is not None:
-            refused = self._check_launch(record.launch_command)
+            refused = self._check_launch(record)
             if refused:
                 reason = f"launch command refused: {refused}"
         if reason is None and incarnation(record) in self._closed:
@@ -261,12 +261,13 @@ class Registry:
     def _still_running(self, entry: Entry) -> bool:
         return self._alive is not None and self._alive(entry.record) is True
 
-    def launch_exited(self, key: str, returncode: int, *, now: float) -> list[Event]:
-        """The launcher saw a process we started (for ``launch_key`` ``key``) exit."""
+    def launch_exited(self, key: str, returncode: int, *, now: float, reason: str = "") -> list[Event]:
+        """A process we started (for ``launch_key`` ``key``) exited, or (``reason``) was never started."""
+        why = reason or f"relaunched process exited with code {returncode}"
         events = []
         for entry in self.directory.entries():
             if entry.state is State.RELAUNCHING and launch_key(entry.record) == key:
-                events += self._failed(entry, f"relaunched process exited with code {returncode}", now)
+                events += self._failed(entry, why, now)
         return events
 
     def _relaunch(self, entry: Entry, now: float) -> list[Event]:

@@ -70,7 +70,10 @@ def test_bad_records_are_refused_with_a_reason(reg, record, words):
 
 
 def test_launch_command_outside_allowlist_is_refused():
-    reg = Registry(CFG, check_launch=lambda argv: None if argv[0].startswith("/ws/") else f"{argv[0]} not allowed")
+    reg = Registry(
+        CFG,
+        check_launch=lambda r: None if r.launch_command[0].startswith("/ws/") else f"{r.launch_command[0]} not allowed",
+    )
     assert reg.register(rec(), now=0)[0].accepted
     result, _ = reg.register(rec(name="evil", launch_command=("/bin/sh", "-c", "rm -rf /")), now=0)
     assert not result.accepted and result.reason == "launch command refused: /bin/sh not allowed"

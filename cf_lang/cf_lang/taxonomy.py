@@ -70,6 +70,7 @@ _TREE: dict[str, str | None] = {
     "Backend": "Service",
     "Simulator": "Backend",
     "RobotDriver": "Backend",
+    "Launcher": "Backend",  # a launch agent: starts components on its host for the ComMAg
     "Monitoring": "Service",
 }
 
