@@ -132,6 +132,14 @@ def start_gateway(procs: Processes, tag: str, port_file: Path, *params: str) -> 
     return procs.start(argv, "gateway")
 
 
+def players_argv(tag: str, side: str, name: str, *params: str) -> list[str]:
+    """The players container for side ``side`` of the simulation sim_<tag>, as host ``name``."""
+    argv = [executable("cf_sim_backend", "players"), "--ros-args", "-r", f"__node:={name}"]
+    for param in (f"commag:=/commag_{tag}", f"sim:=sim_{tag}", f"side:={side}", f"name:={name}", *params):
+        argv += ["-p", param]
+    return argv
+
+
 def start_component(procs: Processes, tag: str, name: str, *args: str) -> subprocess.Popen:
     argv = [executable("cf_commag", "demo_component"), "--name", name, "--commag", f"/commag_{tag}", *args]
     return procs.start(argv, name)

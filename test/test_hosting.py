@@ -15,24 +15,15 @@ import signal
 from test_sim_match import start_sim_process
 
 from cf_commag.client import Agent
+from cf_commag.process import process_start
 from cf_commag.testing import Ros
-from cf_system import executable, start_commag
+from cf_system import players_argv, start_commag
 
 AGENTS = [f"blue_{n}_{role}" for n in (1, 2) for role in ("perception", "action", "decision")]
 
 
 def start_players(procs, tag):
-    argv = [executable("cf_sim_backend", "players"), "--ros-args", "-r", f"__node:=players_{tag}"]
-    for param in (
-        f"commag:=/commag_{tag}",
-        f"sim:=sim_{tag}",
-        "side:=l",
-        "team_size:=2",
-        "lease:=1.0",
-        f"name:=players_{tag}",
-    ):
-        argv += ["-p", param]
-    return procs.start(argv, "players")
+    return procs.start(players_argv(tag, "l", f"players_{tag}", "team_size:=2", "lease:=1.0"), "players")
 
 
 def registered_pid(probe, name: str) -> int:
@@ -82,27 +73,17 @@ def test_a_container_is_relaunched_once_for_all_its_agents_and_a_hung_one_is_kil
     for name in AGENTS:
         probe.wait_kind(name, "relaunched", count=2, timeout=90.0)
     assert len(launches(probe)) == 2
-    probe.spin_until(lambda: not _running(second), 10.0, "the hung process killed")
+    probe.spin_until(lambda: process_start(second) is None, 10.0, "the hung process killed")
     third = registered_pid(probe, "blue_1_decision")
     assert third not in (first.pid, second)
-
-
-def _running(pid: int) -> bool:
-    try:
-        with open(f"/proc/{pid}/stat", "rb") as f:
-            return f.read().rsplit(b")", 1)[1].split()[0] not in (b"Z", b"X")
-    except OSError:
-        return False
 
 
 def test_two_containers_play_a_sync_match_every_player_acting_every_cycle(procs, probe, tag, tmp_path):
     """Each team in one process: one state read per process, each cycle's commands and dones as one sample."""
     start_commag(procs, tag, tmp_path)
     for side in ("l", "r"):
-        argv = [executable("cf_sim_backend", "players"), "--ros-args", "-r", f"__node:=players_{side}_{tag}"]
-        for param in (f"commag:=/commag_{tag}", f"sim:=sim_{tag}", f"side:={side}", "team_size:=2", "lease:=2.0"):
-            argv += ["-p", param]
-        argv += ["-p", f"team:={'blue' if side == 'l' else 'red'}{tag}", "-p", f"name:=players_{side}_{tag}"]
+        team = f"team:={'blue' if side == 'l' else 'red'}{tag}"
+        argv = players_argv(tag, side, f"players_{side}_{tag}", "team_size:=2", "lease:=2.0", team)
         procs.start(argv, f"players_{side}")
     for side in ("blue", "red"):
         for n in (1, 2):

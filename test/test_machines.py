@@ -22,7 +22,7 @@ import uuid
 
 import pytest
 
-from cf_system import executable, start_commag
+from cf_system import executable, players_argv, start_commag
 
 
 def start_on(procs, machine: str, argv: list[str], log_name: str):
@@ -188,10 +188,7 @@ def test_a_match_across_two_hosts_with_a_process_on_host_b_killed_and_relaunched
         start(hosts.b, "host_b", agent, "launch_agent")
 
         def players(side: str) -> list[str]:
-            argv = [executable("cf_sim_backend", "players"), "--ros-args", "-r", f"__node:=players_{side}_{tag}"]
-            for param in (f"commag:=/commag_{tag}", f"sim:=sim_{tag}", f"side:={side}", "team_size:=2"):
-                argv += ["-p", param]
-            return [*argv, "-p", f"name:=players_{side}_{tag}", "-p", "lease:=2.0"]
+            return players_argv(tag, side, f"players_{side}_{tag}", "team_size:=2", "lease:=2.0")
 
         start(hosts.a, "host_a", players("l"), "players_l")
         red = start(hosts.b, "host_b", players("r"), "players_r")
