@@ -91,9 +91,9 @@ def make_executor(kind: str):
 def default_executor(node: Node):
     """The executor every node runs in unless it says otherwise: ``CF_EXECUTOR`` (default ``events``).
 
-    rclpy's SingleThreadedExecutor rebuilds its wait set in Python at every wake-up: measured
-    here, an idle node with one 10 Hz timer used 21 ms of CPU a second with it, 6.5 with the
-    EventsExecutor; at 10 cycles a second, that difference is most of a component's budget.
+    rclpy's SingleThreadedExecutor rebuilds its wait set in Python at every wake-up: an idle node
+    with one 10 Hz timer costs 2.5-3x the CPU it costs in the EventsExecutor (bench/bench_idle.py),
+    and a component with its subscriptions, clients and timers more (bench/bench_realtime.py).
     """
     executor = make_executor(os.environ.get("CF_EXECUTOR", "events"))
     executor.add_node(node)
