@@ -15,7 +15,8 @@ import pytest
 from cf_lang.ontology import PlayMode, Team
 from cf_lang.ontology import actions as act
 from cf_lang.ontology.positioning import AbsolutePositioning
-from cf_sim_backend.rcss.belief import PLAYER_MEMORY, UNSURE, Belief, sim_mode, world_state
+from cf_sim_backend.embedded.rcg import RCSS_PLAYMODES
+from cf_sim_backend.rcss.belief import PLAYER_MEMORY, SIM_MODES, UNSURE, Belief, sim_mode, world_state
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse, well_formed
 from cf_sim_backend.rcss.session import PlayerSession, rcss_command
 from cf_sim_backend.rcss.trace import belief_errors, read_trace
@@ -91,6 +92,43 @@ def test_belief_follows_play_modes_and_the_score():
 )
 def test_server_play_modes_map_to_the_simulators(server, ours):
     assert sim_mode(server) == ours
+
+
+# Every play mode rcssserver 19 has, and the referee's other messages (goals with the score, cards).
+REFEREE = [
+    *RCSS_PLAYMODES,
+    "goal_l_1",
+    "goal_r_12",
+    "yellow_card_l_3",
+    "yellow_card_r_2",
+    "red_card_l_11",
+    "time_up",
+    "time_up_without_a_team",
+    "time_extended",
+    "half_time",
+    "foul_l",
+    "goalie_catch_ball_r",
+    "penalty_onfield_l",
+    "penalty_foul_r",
+    "penalty_winner_l",
+    "penalty_draw",
+    "something_a_newer_server_says",
+]
+
+
+@pytest.mark.parametrize("said", REFEREE)
+def test_every_referee_message_is_read_and_none_is_fatal(said):
+    """A card must not end the adapter (it ended all eleven at cycle 4958 of a match against HELIOS)."""
+    b = _belief()
+    b.update(parse("(hear 0 referee play_on)"))
+    b.update(parse(f"(hear 10 referee {said})"))
+    assert b.mode in SIM_MODES
+    state = world_state(b)  # what the perception sends: its play mode must be one the language knows
+    assert state.game.play_mode in set(PlayMode)
+    if said.startswith(("yellow_card", "red_card")):
+        assert b.mode == "play_on" and b.referee_notes[-1] == said
+    if said == "something_a_newer_server_says":
+        assert b.mode == "play_on" and "unknown referee message" in b.errors[-1]
 
 
 def _belief(side: str = "l", number: int = 7) -> Belief:

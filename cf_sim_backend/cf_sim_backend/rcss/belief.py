@@ -46,12 +46,31 @@ UNSURE = 50.0  # m: the sigma of a pose we know nothing about
 QUANT = 0.05  # relative distance error of moving objects (the server rounds log(distance) to 0.1)
 
 # rcssserver play modes the embedded simulator's names do not have, as the nearest of those.
-_FOUL = ("free_kick_fault", "back_pass", "catch_fault", "foul_charge", "foul_push", "foul_multiple_attacker")
+_FOUL = (
+    "free_kick_fault",
+    "back_pass",
+    "catch_fault",
+    "foul_charge",
+    "foul_push",
+    "foul_multiple_attack",
+    "foul_multiple_attacker",
+    "foul_ballout",
+    "illegal_defense",
+    "foul",
+)
 _FOR_SIDE = ("indirect_free_kick", "goalie_catch_ball", "penalty_setup", "penalty_ready", "penalty_taken")
+_SIDED = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick", "offside", "goal")
+# The embedded simulator's play modes (absolute): what the rest of the adapter understands.
+SIM_MODES = frozenset(
+    ["before_kick_off", "play_on", "drop_ball", "half_time", "time_over"]
+    + [f"{base}_{side}" for base in _SIDED for side in ("l", "r")]
+)
+# Referee messages that are no play mode: the game goes on as it was.
+_NOT_A_MODE = ("yellow_card_", "red_card_", "pause", "human_judge", "time_extended")
 
 
-def sim_mode(mode: str) -> str:
-    """An rcssserver play mode as the embedded simulator names it (absolute _l/_r kept)."""
+def sim_mode(mode: str) -> str | None:
+    """An rcssserver play mode as the embedded simulator names it (absolute _l/_r kept); None if unknown."""
     if mode.startswith("goal_l_") or mode.startswith("goal_r_"):
         return mode[:6]
     base, _, who = mode.rpartition("_")
@@ -62,10 +81,11 @@ def sim_mode(mode: str) -> str:
             return f"free_kick_{who}"
         if base.startswith("penalty"):
             return "play_on"
-        return mode
-    if mode in ("time_up", "time_extended", "time_up_without_a_team"):
+    if mode in ("time_up", "time_up_without_a_team"):
         return "time_over"
-    return mode
+    if mode == "first_half_over":
+        return "half_time"
+    return mode if mode in SIM_MODES else None
 
 
 def _num(value) -> float | str:
@@ -132,6 +152,7 @@ class Belief:
     see_time: int = -1
     sense_time: int = -1
     errors: list[str] = field(default_factory=list)
+    referee_notes: list[str] = field(default_factory=list)  # the latest cards and pauses
     # Turns and moves we sent, by command: (the server's counter of it when sent, the sense_body
     # cycle then, its effect). Applied once a sense_body's counter shows the server executed it.
     pending: dict[str, tuple[int | None, int, tuple[float, ...]]] = field(default_factory=dict)
@@ -184,6 +205,13 @@ class Belief:
             self._set_mode(str(msg[3]))
 
     def _set_mode(self, mode: str) -> None:
+        if mode.startswith(_NOT_A_MODE):  # a card, a pause: noted, the play mode stays
+            self.referee_notes = [*self.referee_notes[-19:], mode]
+            return
+        ours = sim_mode(mode)
+        if ours is None:  # a message of a newer server: never fatal
+            self.note_error(f"unknown referee message {mode!r}: the play mode stays {self.mode}")
+            return
         self.server_mode = mode
         if mode.startswith(("goal_l_", "goal_r_")) and mode[7:].isdigit():
             self.score[Side(mode[5])] = int(mode[7:])
@@ -194,7 +222,7 @@ class Belief:
             # The server may put us elsewhere (own half before a kick-off; 9.15 m from the ball at a set
             # piece): we know nothing until the next see.
             self.me.sigma = max(self.me.sigma, UNSURE)
-        self.mode = sim_mode(mode)
+        self.mode = ours
 
     def _on_sense_body(self, msg: list) -> None:
         self.time = self.sense_time = int(msg[1])
