@@ -20,6 +20,8 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
+import shlex
 import shutil
 import signal
 import socket
@@ -54,6 +56,7 @@ class Trainer:
         self.addr = ("127.0.0.1", port)
         self.mode = "before_kick_off"
         self.time = 0
+        self.looked: str | None = None
 
     def send(self, text: str) -> None:
         self.sock.sendto(text.encode() + b"\0", self.addr)
@@ -70,6 +73,16 @@ class Trainer:
                 return
         raise RuntimeError("the trainer could not connect")
 
+    def players(self, team: str) -> int:
+        """How many players of ``team`` are on the field (the server answers the trainer's look)."""
+        self.send("(look)")
+        for _ in range(40):
+            self.poll()
+            if self.looked is not None:
+                seen, self.looked = self.looked, None
+                return len(set(re.findall(rf'\(\(p "{re.escape(team)}" (\d+)', seen)))
+        return 0
+
     def poll(self) -> None:
         """Read what is there; answer (think) with (done)."""
         while True:
@@ -78,7 +91,9 @@ class Trainer:
             except TimeoutError:
                 return
             text = data.rstrip(b"\0").decode(errors="replace")
-            if text == "(think)":
+            if text.startswith("(ok look"):
+                self.looked = text
+            elif text == "(think)":
                 self.send("(done)")
             elif text.startswith("(hear ") and " referee " in text:  # (hear referee TIME MODE) for a trainer
                 parts = text.strip("()").split()
@@ -157,6 +172,20 @@ def run(args: argparse.Namespace) -> dict:
                 if p.poll() is not None or time.monotonic() > deadline:
                     raise RuntimeError(f"team {name} did not come up: see {out / f'team-{name}.log'}")
             time.sleep(0.2)
+        if args.opponent_cmd:  # a real opponent: its own start command, on the same server
+            text = args.opponent_cmd.format(team=args.opponent, host="127.0.0.1", port=port)
+            with open(out / f"team-{args.opponent}.log", "wb") as log:
+                p = subprocess.Popen(shlex.split(text), stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+            procs.append(p)
+            deadline = time.monotonic() + 90
+            while trainer.players(args.opponent) < args.opponent_players:
+                if p.poll() is not None and trainer.players(args.opponent) == 0:
+                    raise RuntimeError(
+                        f"the opponent exited with {p.returncode}: see {out / f'team-{args.opponent}.log'}"
+                    )
+                if time.monotonic() > deadline:
+                    raise RuntimeError(f"the opponent did not bring {args.opponent_players} players in 90 s")
+            summary["opponent"] = args.opponent
         t0 = time.monotonic()
         for _ in range(30):  # let the decisions find their providers and move into formation
             trainer.poll()
@@ -222,6 +251,13 @@ def main() -> int:
     ap.add_argument("--kill", default="", help="N@CYCLE: kill -9 our player N's adapter at that cycle")
     ap.add_argument("--no-isolate", action="store_true", help="do not run in a private network namespace")
     ap.add_argument("--game-log", action="store_true", help="let the server write its game log (.rcg) into --out")
+    ap.add_argument(
+        "--opponent-cmd",
+        default="",
+        help="start command of another team, {team} {host} {port} filled in (run as argv, no shell), e.g. "
+        "'/path/to/helios-base/src/start.sh -t {team} -p {port}'",
+    )
+    ap.add_argument("--opponent-players", type=int, default=11, help="players the opponent brings")
     args = ap.parse_args()
     if not args.server:
         ap.error("name the rcssserver binary with --server or RCSSSERVER")

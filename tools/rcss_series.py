@@ -1,0 +1,153 @@
+"""A series of matches of our team against a named opponent on rcssserver, and a table of how they went.
+
+    python tools/rcss_series.py --server $RCSSSERVER --opponent PYRUS \\
+        --opponent-cmd "bash -c 'cd /path/to/Pyrus2D && ./start.sh -t {team} -p {port}'" \\
+        [--matches 5] [--cycles 2000] [--realtime] [--out DIR]
+
+Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode unless
+--realtime; our 11 players against the opponent's, started with its own command). From each
+match's summary and game log (.rcg) it prints: the score, shots (kicks towards the opponent's
+goal from within 25 m of it), possession (cycles of play_on in which a player of that side was
+nearest the ball), our CPU per cycle, relaunches, and the share of our body commands the server
+executed; then the series' totals. The opponent is never part of this repository: build it
+beside it (see docs/rcssserver.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+GOAL_X = 52.5
+
+
+def read_rcg(path: Path) -> list[tuple[int, str, tuple[float, float], list[tuple[str, float, float, int]]]]:
+    """(time, play mode, ball, [(side, x, y, kicks so far)]) per show line of a game log (ULG5/6)."""
+    frames, mode = [], "before_kick_off"
+    for line in path.read_text(errors="replace").splitlines():
+        if line.startswith("(playmode "):
+            mode = line.strip("()").split()[2]
+        elif line.startswith("(show "):
+            head, _, rest = line.partition(" ((b) ")
+            t = int(head.split()[1])
+            ball = tuple(float(v) for v in rest.split(")")[0].split()[:2])
+            players = []
+            for chunk in rest.split(" ((")[1:]:
+                words = chunk.replace("(", " ").replace(")", " ").split()
+                if len(words) < 6 or words[0] not in ("l", "r") or words[3] == "0":
+                    continue  # (not a player, or one that never connected: state 0)
+                side, x, y = words[0], float(words[4]), float(words[5])
+                kicks = int(words[words.index("c") + 1]) if "c" in words else 0
+                players.append((side, x, y, kicks))
+            frames.append((t, mode, ball, players))
+    return frames
+
+
+def match_stats(rcg: Path, our_side: str) -> dict:
+    """Possession and shots of both sides from a game log."""
+    frames = read_rcg(rcg)
+    possession = {"l": 0, "r": 0}
+    shots = {"l": 0, "r": 0}
+    last_kicks: dict[tuple[str, int], int] = {}
+    for _, mode, (bx, by), players in frames:
+        if mode == "play_on" and players:
+            nearest = min(players, key=lambda p: math.hypot(p[1] - bx, p[2] - by))
+            if math.hypot(nearest[1] - bx, nearest[2] - by) < 3.0:
+                possession[nearest[0]] += 1
+        for i, (side, x, y, kicks) in enumerate(players):
+            key = (side, i)
+            if kicks > last_kicks.get(key, kicks):
+                goal_x = GOAL_X if side == "l" else -GOAL_X
+                if math.hypot(goal_x - x, y) < 25.0:
+                    shots[side] += 1
+            last_kicks[key] = kicks
+    theirs = "r" if our_side == "l" else "l"
+    total = max(1, possession["l"] + possession["r"])
+    return {
+        "shots": [shots[our_side], shots[theirs]],
+        "possession": [possession[our_side] / total, possession[theirs] / total],
+    }
+
+
+def play(args: argparse.Namespace, n: int) -> dict:
+    out = Path(args.out) / f"match-{n}"
+    argv = [sys.executable, str(HERE / "rcss_match.py"), "--server", args.server, "--players", "11"]
+    argv += ["--cycles", str(args.cycles), "--opponent", args.opponent, "--opponent-cmd", args.opponent_cmd]
+    argv += ["--game-log", "--out", str(out), "--timeout", str(args.timeout)]
+    if args.realtime:
+        argv.append("--realtime")
+    t0 = time.monotonic()
+    done = subprocess.run(argv, capture_output=True, text=True, timeout=args.timeout + 300)
+    try:
+        summary = json.loads(done.stdout.strip().splitlines()[-1])
+    except (IndexError, ValueError):
+        return {"n": n, "error": f"exit {done.returncode}: {done.stderr.strip()[-300:]}"}
+    players = summary.get("players", [])
+    side = next((p["side"] for p in players if p.get("side")), "l")
+    score = players[0]["score"] if players else [0, 0]
+    ours, theirs = (score[0], score[1]) if side == "l" else (score[1], score[0])
+    sent = sum(p["body_commands"] for p in players)
+    row = {
+        "n": n,
+        "score": [ours, theirs],
+        "cpu_ms_per_cycle": summary.get("our_cpu_ms_per_cycle"),
+        "relaunched": summary.get("relaunched", 0),
+        "executed": sum(p["executed"] for p in players) / max(1, sent),
+        "seconds": round(time.monotonic() - t0),
+    }
+    logs = sorted(out.glob("*.rcg"))
+    if logs:
+        row |= match_stats(logs[-1], side)
+    return row
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--server", required=True, help="rcssserver binary")
+    ap.add_argument("--opponent", required=True, help="the opponent's team name")
+    ap.add_argument("--opponent-cmd", required=True, help="its start command ({team} {host} {port} filled in)")
+    ap.add_argument("--matches", type=int, default=5)
+    ap.add_argument("--cycles", type=int, default=2000, help="match length (two halves)")
+    ap.add_argument("--realtime", action="store_true")
+    ap.add_argument("--timeout", type=float, default=3600.0, help="seconds each match may take")
+    ap.add_argument("--out", default="rcss-series")
+    args = ap.parse_args()
+    Path(args.out).mkdir(parents=True, exist_ok=True)
+    print(
+        f"our team v {args.opponent}: {args.matches} matches of {args.cycles} cycles, "
+        f"{'real time' if args.realtime else 'synch mode'}\n"
+    )
+    print("| match | score | shots | possession | our CPU ms/cycle | relaunches | commands executed |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    rows = []
+    for n in range(1, args.matches + 1):
+        r = play(args, n)
+        rows.append(r)
+        if "error" in r:
+            print(f"| {n} | failed: {r['error'][:100]} | | | | | |", flush=True)
+            continue
+        shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
+        print(
+            f"| {n} | {r['score'][0]}:{r['score'][1]} | {shots[0]}:{shots[1]} | {poss[0]:.0%}:{poss[1]:.0%} |"
+            f" {r['cpu_ms_per_cycle']} | {r['relaunched']} | {r['executed']:.1%} |",
+            flush=True,
+        )
+    played = [r for r in rows if "error" not in r]
+    goals = [sum(r["score"][0] for r in played), sum(r["score"][1] for r in played)]
+    won = sum(r["score"][0] > r["score"][1] for r in played)
+    lost = sum(r["score"][0] < r["score"][1] for r in played)
+    print(
+        f"\nseries: {goals[0]}:{goals[1]} in {len(played)} matches; won {won}, drawn {len(played) - won - lost}, lost {lost}"
+    )
+    (Path(args.out) / "series.json").write_text(json.dumps(rows, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
