@@ -116,6 +116,21 @@ def kill_adapter(team: str, number: int) -> int | None:
     return None
 
 
+def relaunched_processes(commag_log: str) -> int:
+    """Processes the ComMAg started again that came back: the agents of one host count once."""
+    count, joined = 0, set()
+    for line in commag_log.splitlines():
+        m = re.search(r"\]: (\w+): (relaunching|relaunched) \((.*)\)$", line)
+        if not m:
+            continue
+        name, kind, reason = m.groups()
+        if kind == "relaunching":
+            (joined.add if "with its host" in reason else joined.discard)(name)
+        elif name not in joined:
+            count += 1
+    return count
+
+
 def run(args: argparse.Namespace) -> dict:
     out = Path(args.out or tempfile.mkdtemp(prefix="rcss-match-")).resolve()
     (out / "conf").mkdir(parents=True, exist_ok=True)
@@ -228,7 +243,8 @@ def run(args: argparse.Namespace) -> dict:
     summary["players"] = [json.loads(f.read_text()) for f in sorted((out / "stats").glob("*.json"))]
     commag_log = out / f"logs-{args.team}" / "commag.log"
     events = commag_log.read_text(errors="replace") if commag_log.exists() else ""
-    summary["relaunched"] = events.count(": relaunched (")
+    summary["relaunched"] = relaunched_processes(events)
+    summary["agents_relaunched"] = events.count(": relaunched (")
     summary["withdrawn"] = events.count(": withdrawn (")
     return summary
 

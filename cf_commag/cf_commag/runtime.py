@@ -125,8 +125,10 @@ def run(
     """The body of every node's ``main()``: init, build the node, spin, deregister, clean up; the exit code.
 
     ``agents(node)`` are deregistered on the way out (default: ``node.agent`` if it has one);
-    ``executor(node)`` gives an executor holding the node (default: rclpy's); ``until(node)``
-    ends the spin early; ``on_exit(node)`` is the node's own clean-up. Invalid parameters
+    ``executor(node)`` gives an executor holding the node (default: :func:`default_executor`);
+    ``until(node)`` ends the spin early, with the exit code in ``node.exit_code`` if it has one
+    (end a process that way, not by raising SystemExit in a callback: the events executor is
+    left unable to serve the deregistrations); ``on_exit(node)`` is the node's own clean-up. Invalid parameters
     (ValueError while the node is built) end the process with code 2 and the reason;
     SystemExit, from the constructor or a callback, with its code.
     """
@@ -153,4 +155,4 @@ def run(
         )
     except SystemExit as exc:  # a callback decided the process is done (e.g. the match is over)
         return int(exc.code or 0)
-    return 0
+    return int(getattr(node, "exit_code", None) or 0)

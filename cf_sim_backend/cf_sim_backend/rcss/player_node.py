@@ -36,6 +36,7 @@ from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.guarded import GuardedNode
 from cf_commag.host import Host
 from cf_commag.params import ComponentParams
+from cf_commag.runtime import default_executor
 from cf_sim_backend.rcss.belief import world_state
 from cf_sim_backend.rcss.session import PlayerSession
 from cf_sim_backend.services import ActionService, PerceptionService
@@ -80,6 +81,7 @@ class RcssPlayerNode(GuardedNode, Node):
         self.agents: list[Agent] = []
         self.perception: PerceptionService | None = None  # once the server has given us a number
         self.decision = None  # the hosted decision node (decision:=true)
+        self.exit_code: int | None = None  # set when the match is over (or the server is gone)
         self.action: ActionService | None = None
         self.synch = False
         self.cycle_done = -1  # the last cycle acted on
@@ -219,7 +221,8 @@ class RcssPlayerNode(GuardedNode, Node):
         )
         self.decision = node
         self.agents.append(node.agent)
-        self.executor.add_node(node)
+        if self.executor is not None:  # else (a relaunch joins at once) _executor() adds it
+            self.executor.add_node(node)
 
     def _watch(self) -> None:
         now = time.monotonic()
@@ -232,9 +235,11 @@ class RcssPlayerNode(GuardedNode, Node):
         if silent > float(self.p.server_timeout) and not self.finished:
             self.get_logger().error(f"the server has been silent for {silent:.0f} s")
             self.finished = True
-        if self.finished:
+        if self.finished and self.exit_code is None:
+            # Ends the spin (run's ``until``), which then deregisters every agent of this process:
+            # raised from a callback instead, SystemExit left the executor unable to finish that.
             self._write_stats()
-            raise SystemExit(0 if self.session.ready else 2)
+            self.exit_code = 0 if self.session.ready else 2
 
     # ---- each cycle -----------------------------------------------------------------
 
@@ -315,6 +320,13 @@ class RcssPlayerNode(GuardedNode, Node):
         self.sock.close()
 
 
+def _executor(node: RcssPlayerNode):
+    executor = default_executor(node)
+    if node.decision is not None:  # made before there was an executor to spin it
+        executor.add_node(node.decision)
+    return executor
+
+
 def _player() -> RcssPlayerNode:
     try:
         return RcssPlayerNode()
@@ -327,7 +339,13 @@ def main() -> int:
     """Entry point of ``ros2 run cf_sim_backend rcss_player``."""
     # The default executor: the events one has no guard conditions (Jazzy). The agents are
     # made once the server gave us a number: spin() holds this very list.
-    return run(_player, agents=lambda node: node.agents, on_exit=RcssPlayerNode.close)
+    return run(
+        _player,
+        agents=lambda node: node.agents,
+        executor=_executor,
+        until=lambda node: node.exit_code is not None,
+        on_exit=RcssPlayerNode.close,
+    )
 
 
 if __name__ == "__main__":
