@@ -191,7 +191,7 @@ class Agent:
         self._register = register
         self._closed = False
         # A standalone agent is the only one of its private host: the same code as a hosted one.
-        self.host = host if host is not None else Host(node, commag=commag, private=True)
+        self.host = host if host is not None else Host(node, commag=commag)
         self._renewer = self.host.renewer
         self._outbox = self.host.outbox
         self.host.add(self)

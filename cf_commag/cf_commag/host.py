@@ -60,12 +60,10 @@ class Host:
         commag: str = "/commag",
         tick: float = 0.1,
         watchdog: float = 0.0,
-        private: bool = False,
     ):
         self.node = node
         self.name = name
         self.commag = commag
-        self.private = private
         self.agents: dict[str, Agent] = {}
         self.delivered = 0  # messages handed over locally
         self._log = node.get_logger()
