@@ -240,13 +240,33 @@ def run(args: argparse.Namespace) -> dict:
             except subprocess.TimeoutExpired:
                 os.killpg(p.pid, signal.SIGKILL)
     summary["server_exit_code"] = server.returncode
-    summary["players"] = [json.loads(f.read_text()) for f in sorted((out / "stats").glob("*.json"))]
+    summary["players"] = players = [json.loads(f.read_text()) for f in sorted((out / "stats").glob("*.json"))]
+    summary.update(command_counts(players))
     commag_log = out / f"logs-{args.team}" / "commag.log"
     events = commag_log.read_text(errors="replace") if commag_log.exists() else ""
     summary["relaunched"] = relaunched_processes(events)
     summary["agents_relaunched"] = events.count(": relaunched (")
     summary["withdrawn"] = events.count(": withdrawn (")
     return summary
+
+
+def command_counts(players: list[dict]) -> dict:
+    """Body commands our players sent and the server executed, those it did not by kind, and how late any went out."""
+    sent = sum(p["body_commands"] for p in players)
+    executed = sum(p["executed"] for p in players)
+    unexecuted: dict[str, int] = {}
+    for p in players:
+        for key, n in p.items():
+            if key.startswith("unexecuted_") and isinstance(n, int):
+                unexecuted[key.removeprefix("unexecuted_")] = unexecuted.get(key.removeprefix("unexecuted_"), 0) + n
+    return {
+        "sent": sent,
+        "executed": executed,
+        "executed_share": executed / max(1, sent),
+        "unexecuted": unexecuted,
+        "acts_after_50ms": sum(p.get("acts_after_50ms", 0) for p in players),
+        "act_ms_max": max((p.get("act_ms_max", 0) for p in players), default=0),
+    }
 
 
 def main() -> int:

@@ -92,13 +92,12 @@ def play(args: argparse.Namespace, n: int) -> dict:
     side = next((p["side"] for p in players if p.get("side")), "l")
     score = players[0]["score"] if players else [0, 0]
     ours, theirs = (score[0], score[1]) if side == "l" else (score[1], score[0])
-    sent = sum(p["body_commands"] for p in players)
     row = {
         "n": n,
         "score": [ours, theirs],
         "cpu_ms_per_cycle": summary.get("our_cpu_ms_per_cycle"),
         "relaunched": summary.get("relaunched", 0),
-        "executed": sum(p["executed"] for p in players) / max(1, sent),
+        "executed": summary.get("executed_share", 0.0),
         "seconds": round(time.monotonic() - t0),
     }
     logs = sorted(out.glob("*.rcg"))

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from cf_lang.ontology import actions as act
 from cf_sim_backend.perception import to_own_frame
-from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, norm_deg
+from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, move_allowed, norm_deg
 
 Command = tuple  # ("dash", power, dir) | ("turn", moment) | ("kick", power, dir) | ...
 TIMEOUT_CYCLES = 300
@@ -82,6 +82,18 @@ class Once(Skill):
 
     def _step(self, world: World, me: SimPlayer) -> Step:
         return Step([self.command], "done")
+
+
+class Move(Once):
+    """A move: refused once the play mode no longer allows it (the server would ignore it)."""
+
+    def __init__(self, x: float, y: float):
+        super().__init__(("move", x, y), "move")  # own-half coordinates as for the left side
+
+    def _step(self, world: World, me: SimPlayer) -> Step:
+        if not move_allowed(world.mode):
+            return Step([], "failed", "move is allowed only before a kick-off")
+        return super()._step(world, me)
 
 
 class MoveTo(Skill):
@@ -194,10 +206,9 @@ def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> S
     if isinstance(action, act.Say):
         return Once(("say",), "say")
     if isinstance(action, act.Move):
-        if not (world.mode.startswith(("before_kick_off", "goal_", "half_time", "kick_off_"))):
+        if not move_allowed(world.mode):
             raise SkillError("move is allowed only before a kick-off")
-        x, y = action.target.x, action.target.y
-        return Once(("move", x, y), "move")  # move takes own-half coordinates as for the left side
+        return Move(action.target.x, action.target.y)
     if isinstance(action, act.MoveTo):
         return MoveTo(*_absolute(side, action.target.x, action.target.y), action.speed)
     if isinstance(action, act.TurnToDirection):

@@ -150,6 +150,11 @@ KICK_OFF_FORMATION: dict[int, tuple[float, float]] = {
 }
 
 
+def move_allowed(mode: str) -> bool:
+    """Whether a move is allowed in this play mode (rcssserver: before a kick-off and after a goal)."""
+    return mode.startswith(("before_kick_off", "goal_", "half_time"))
+
+
 def kick_off_position(side: Side, number: int, taker: bool) -> tuple[float, float]:
     x, y = KICK_OFF_FORMATION.get(number, (-20.0, 0.0))
     if number == 10 and not taker:

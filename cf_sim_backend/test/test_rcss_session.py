@@ -75,7 +75,7 @@ def test_belief_follows_play_modes_and_the_score():
     assert belief.side is Side.LEFT and belief.number == 1
     assert belief.score == {Side.LEFT: 2, Side.RIGHT: 0} and belief.mode == "play_on"
     assert belief.server["ball_decay"] == 0.94 and len(belief.player_types) == 18
-    assert belief.params().kickable_distance == pytest.approx(1.085)
+    assert belief.params().kickable_distance == pytest.approx(1.085 / math.exp(0.05) - 0.05)  # see the reach test
 
 
 @pytest.mark.parametrize(
@@ -357,6 +357,73 @@ def test_commands_the_server_executed_are_counted_from_its_counters_also_before_
         session.receive(text.encode())
     session.receive(b"(sense_body 1 (kick 1) (dash 2) (turn 0) (move 1))")
     assert session.stats["executed"] == 4 and session.stats["cycles"] == 2
+
+
+def test_a_body_command_the_next_sense_body_does_not_count_is_reported_by_kind():
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 play_on)\0")
+    session.receive(b"(sense_body 5 (kick 2) (dash 7) (turn 0) (move 1))")
+    session.skill = _Fixed([("kick", 40.0, 0.0)])
+    assert session.act().commands == ["(kick 40 0)"]
+    session.receive(b"(sense_body 6 (kick 2) (dash 7) (turn 0) (move 1))")  # the kick did not count
+    session.skill = _Fixed([("dash", 50.0)])
+    session.act()
+    session.receive(b"(sense_body 7 (kick 2) (dash 8) (turn 0) (move 1))")  # the dash did
+    assert session.stats.get("unexecuted_kick") == 1 and "unexecuted_dash" not in session.stats
+    assert session.unexecuted == ["kick sent at 5 (play_on)"]
+
+
+class _Fixed(Skill):
+    """A skill that sends the same commands every cycle (for the session's bookkeeping)."""
+
+    name = "fixed"
+
+    def __init__(self, commands):
+        super().__init__()
+        self.commands = commands
+
+    def _step(self, world, me):
+        from cf_sim_backend.skills import Step
+
+        return Step(list(self.commands))
+
+
+def test_a_move_started_after_a_goal_is_refused_once_the_kick_off_is_called():
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 goal_l_1)\0")
+    session.receive(b"(sense_body 40 (kick 2) (dash 7) (turn 0) (move 1))")
+    world = session.belief.world()
+    me = world.player(Side.LEFT, 3)
+    session.start(skill_for("move", act.Move(target=AbsolutePositioning(x=-10.0, y=5.0)), Side.LEFT, world, me))
+    session.receive(b"(hear 41 referee kick_off_r)")  # the server's goal pause ended first
+    session.receive(b"(sense_body 41 (kick 2) (dash 7) (turn 0) (move 1))")
+    acted = session.act()
+    assert acted.commands == [] and acted.status == "failed" and "before a kick-off" in acted.reason
+    with pytest.raises(ValueError, match="before a kick-off"):
+        skill_for("move", act.Move(target=AbsolutePositioning(x=-10.0, y=5.0)), Side.LEFT, session.belief.world(), me)
+
+
+def test_our_executed_kick_sends_the_believed_ball_off_before_the_next_see():
+    """The synch trace: a kick at cycle 21 (executed: the kick counter is 1 at 22), no see at 22."""
+    from cf_sim_backend.rcss.trace import _truth
+
+    belief, truth, at = Belief("PyTest"), {}, {}
+    for direction, msg in read_trace(SYNCH):
+        if direction == "T<" and str(msg[0]) == "see_global":
+            truth[int(msg[1])] = _truth(msg, "PyTest")["ball"]
+        elif direction == "P<" and belief.update(msg) == "sense_body" and belief.time in (22, 23):
+            at[belief.time] = (belief.ball.x, belief.ball.y, belief.ball.seen)
+        elif direction == "P>":
+            belief.sent(msg)
+        if belief.time > 24:
+            break
+    x, y, seen = at[22]
+    assert seen == 21 and math.hypot(x - truth[22][0], y - truth[22][1]) < 0.2  # was 2.2 m off (still at our feet)
+
+
+def test_the_skills_kick_only_within_a_reach_the_sees_rounding_cannot_fake():
+    params = Belief("CF").params()
+    assert 0.95 < params.kickable_distance < 1.0  # the server's is 1.085; a ball seen at 1.05 may be at 1.1
 
 
 def _dead_reckoned_errors(our_turn: float | None) -> list[float]:

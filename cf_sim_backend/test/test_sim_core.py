@@ -52,6 +52,18 @@ def test_kick_power_direction_and_kickable_distance():
     assert w.ball.vx == 0.0 and w.player(Side.LEFT, 2).kicks == 1
 
 
+def test_a_move_counts_before_a_kick_off_and_not_once_it_is_called():
+    sim = sim_with((Side.LEFT, 3, -10.0, 0.0, 0.0))
+    w, p = sim.world, sim.world.player(Side.LEFT, 3)
+    w.mode = "before_kick_off"
+    sim.command(Side.LEFT, 3, "move", -20.0, 5.0)
+    sim.step()
+    assert (p.x, p.y) == (-20.0, 5.0) and w.mode == "kick_off_l"
+    sim.command(Side.LEFT, 3, "move", -30.0, 5.0)  # rcssserver ignores it now too
+    sim.step()
+    assert (p.x, p.y) == (-20.0, 5.0)
+
+
 def test_dash_speed_cap_decay_and_turn_inertia():
     sim = sim_with((Side.LEFT, 3, 0.0, 0.0, 0.0))
     p = sim.world.player(Side.LEFT, 3)

@@ -154,8 +154,7 @@ class Simulator:
         elif name == "turn":
             physics.turn(w, p, args[0])
         elif name == "move":
-            if w.mode.startswith("kick_off_") or w.mode.startswith("goal_"):
-                self._move(p, *args)
+            pass  # as in rcssserver, a move counts only before a kick-off or after a goal (step() does those)
         elif name in ("kick", "tackle"):
             return self._touch(p, name, args)
         elif name == "catch" and w.mode == "play_on" and physics.catch(w, p, args[0]):

@@ -153,7 +153,7 @@ class Belief:
     sense_time: int = -1
     errors: list[str] = field(default_factory=list)
     referee_notes: list[str] = field(default_factory=list)  # the latest cards and pauses
-    # Turns and moves we sent, by command: (the server's counter of it when sent, the sense_body
+    # Turns, moves and kicks we sent, by command: (the server's counter of it when sent, the sense_body
     # cycle then, its effect). Applied once a sense_body's counter shows the server executed it.
     pending: dict[str, tuple[int | None, int, tuple[float, ...]]] = field(default_factory=dict)
 
@@ -260,6 +260,8 @@ class Belief:
                 del self.pending[kind]
                 if kind == "turn":
                     me.body = norm_deg(me.body + effect[0])
+                elif kind == "kick":
+                    self._kicked(*effect)
                 else:  # move
                     me.x, me.y, me.vx, me.vy = effect[0], effect[1], 0.0, 0.0
             elif self.sense_time > sent_at + 1:  # two sense_bodies without it: the server dropped it
@@ -316,7 +318,7 @@ class Belief:
                 self.anonymous.append((team, track))
 
     def sent(self, msg: list) -> None:
-        """Take a command we sent (parsed) into account: what a turn or a move will do to our pose.
+        """Take a command we sent (parsed) into account: what a turn or a move will do to our pose, a kick to the ball.
 
         It takes effect at the sense_body whose counter shows that the server executed it.
         """
@@ -328,9 +330,38 @@ class Belief:
         elif kind == "move" and len(msg) >= 3:
             sign = -1 if self.side is Side.RIGHT else 1  # the server mirrors a right player's move
             effect = (float(msg[1]) * sign, float(msg[2]) * sign)
+        elif kind == "kick" and len(msg) >= 3 and self.ball is not None:
+            effect = self._kick_accel(float(msg[1]), float(msg[2]))
         else:
             return
         self.pending[kind] = (self.counters.get(kind), self.sense_time, effect)
+
+    def _kick_accel(self, power: float, direction: float) -> tuple[float, float]:
+        """The ball's acceleration (server frame) a kick gives, as rcssserver computes it without noise."""
+        me, ball = self.me, self.ball
+        size = float(self.param("player_size", 0.3)) + float(self.server.get("ball_size", 0.085))
+        margin = float(self.param("kickable_margin", 0.7)) or 0.7
+        to_ball = math.degrees(math.atan2(ball.y - me.y, ball.x - me.x))
+        dir_diff = abs(norm_deg(to_ball - me.body))
+        gap = max(0.0, math.hypot(ball.x - me.x, ball.y - me.y) - size)
+        power = max(-100.0, min(100.0, power))
+        eff = (
+            power * float(self.param("kick_power_rate", 0.027)) * (1.0 - 0.25 * dir_diff / 180.0 - 0.25 * gap / margin)
+        )
+        eff = min(max(eff, 0.0), float(self.server.get("ball_accel_max", 2.7)))
+        angle = math.radians(me.body + direction)
+        return eff * math.cos(angle), eff * math.sin(angle)
+
+    def _kicked(self, ax: float, ay: float) -> None:
+        """Our kick ran: the ball leaves with the kick's acceleration added (the next see corrects it)."""
+        ball = self.ball
+        if ball is None:
+            return
+        ball.vx, ball.vy = ball.vx + ax, ball.vy + ay
+        speed, top = math.hypot(ball.vx, ball.vy), float(self.server.get("ball_speed_max", 3.0))
+        if speed > top:
+            ball.vx, ball.vy = ball.vx * top / speed, ball.vy * top / speed
+        ball.sigma += 0.5  # the kick's noise
 
     # ---- what others read -----------------------------------------------------
 
@@ -348,6 +379,10 @@ class Belief:
         values["goal_width"] = float(self.server.get("goal_width", FIELD.goal_width))
         values["catchable_area"] = float(self.server.get("catchable_area_l", 1.2))
         values["half_cycles"] = int(float(self.server.get("half_time", 300)) * 10)
+        # The reach the skills kick within: the server's, less what the see's rounding of the ball's
+        # distance may hide (a kick at a ball just out of reach is refused and the cycle is lost).
+        reach = values["player_size"] + values["ball_size"] + values["kickable_margin"]
+        values["kickable_margin"] -= reach - (reach / math.exp(QUANT) - 0.05)
         return Params(**values)
 
     def expects_see(self) -> bool:

@@ -88,6 +88,7 @@ class RcssPlayerNode(GuardedNode, Node):
         self.waiting = False  # synch mode: perceived this cycle, (done) not yet sent
         self.finished = False
         self.last_heard = time.monotonic()
+        self.cycle_heard = self.last_heard  # when this cycle's sense_body (or think) came
 
         host = socket.gethostbyname(str(self.p.host))
         self.server = (host, int(self.p.port))
@@ -145,6 +146,8 @@ class RcssPlayerNode(GuardedNode, Node):
         self.last_heard = time.monotonic()
         joined = bool(self.agents)
         kind = self.session.receive(data)
+        if kind in ("sense_body", "think"):
+            self.cycle_heard = self.last_heard
         if kind in ("sense_body", "see", "think") and not self.attached:
             self.server = addr  # a relaunch on its predecessor's port: the server talks to us already
         if kind in ("init", "reconnect", "sense_body", "see", "think"):
@@ -271,6 +274,13 @@ class RcssPlayerNode(GuardedNode, Node):
         acted = self.session.act()
         for text in acted.commands:
             self._send(text)
+        if acted.commands:
+            # How long after the cycle's first message the commands went out (real time: a command
+            # that reaches the server after the cycle ends runs a cycle late, and the next one not at all).
+            stats = self.session.stats
+            delay = int((time.monotonic() - self.cycle_heard) * 1000)
+            stats["act_ms_max"] = max(stats.get("act_ms_max", 0), delay)
+            stats["acts_after_50ms"] = stats.get("acts_after_50ms", 0) + (delay > 50)
         if self.action is not None:
             self.action.settle(acted.status, acted.reason, acted.name, acted.cycles)
 
@@ -304,6 +314,7 @@ class RcssPlayerNode(GuardedNode, Node):
             "kicks": b.counters.get("kick", 0),
             "score": [b.score[Side.LEFT], b.score[Side.RIGHT]],
             "server_errors": b.errors[-5:],
+            "unexecuted_last": self.session.unexecuted,
             "synch": self.synch,
         }
         tmp = f"{path}.tmp"

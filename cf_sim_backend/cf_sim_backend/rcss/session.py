@@ -71,6 +71,10 @@ class PlayerSession:
         default_factory=lambda: {"cycles": 0, "body_commands": 0, "executed": 0, "bad_messages": 0}
     )
     _counted: int = field(default=-1, init=False)
+    # The last body command sent: (cycle, kind, the server's counter of that kind then, play mode),
+    # checked at the next cycle's sense_body, so a benchmark can tell which commands did not run.
+    _last_body: tuple[int, str, int, str] | None = field(default=None, init=False)
+    unexecuted: list[str] = field(default_factory=list)  # the latest ten, for a benchmark's report
 
     def __post_init__(self) -> None:
         self.belief = Belief(self.team, self.goalie)
@@ -106,7 +110,19 @@ class PlayerSession:
             if self.belief.time != self._counted:
                 self._counted = self.belief.time
                 self.stats["cycles"] += 1
+            self._check_last_body()
         return kind
+
+    def _check_last_body(self) -> None:
+        """Count the last body command as unexecuted (by kind) if the next sense_body's counter did not move."""
+        if self._last_body is None or self.belief.time <= self._last_body[0]:
+            return
+        sent_at, kind, before, mode = self._last_body
+        self._last_body = None
+        if kind in _EXECUTED and self.belief.counters.get(kind, before) <= before:
+            key = f"unexecuted_{kind}"
+            self.stats[key] = self.stats.get(key, 0) + 1
+            self.unexecuted = [*self.unexecuted[-9:], f"{kind} sent at {sent_at} ({mode})"]
 
     @property
     def ready(self) -> bool:
@@ -138,6 +154,8 @@ class PlayerSession:
                 body_sent = True
             b.sent(parse(text))  # dead reckoning until the next see
             out.append(text)
+            if cmd[0] in _EXECUTED and cmd[0] in b.counters:
+                self._last_body = (b.time, cmd[0], b.counters[cmd[0]], b.server_mode)
         if body_sent:
             self.acted = b.time
             self.stats["body_commands"] += 1
