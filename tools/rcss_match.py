@@ -57,6 +57,7 @@ class Trainer:
         self.mode = "before_kick_off"
         self.time = 0
         self.looked: str | None = None
+        self.half_time = False  # the referee called half time
 
     def send(self, text: str) -> None:
         self.sock.sendto(text.encode() + b"\0", self.addr)
@@ -98,6 +99,7 @@ class Trainer:
             elif text.startswith("(hear ") and " referee " in text:  # (hear referee TIME MODE) for a trainer
                 parts = text.strip("()").split()
                 self.mode = parts[-1]
+                self.half_time |= self.mode == "half_time"
                 self.time = next((int(p) for p in parts if p.isdigit()), self.time)
 
 
@@ -136,16 +138,17 @@ def run(args: argparse.Namespace) -> dict:
     (out / "conf").mkdir(parents=True, exist_ok=True)
     (out / "stats").mkdir(exist_ok=True)
     port = args.port
-    halves = max(1, args.cycles // 10)
+    half_seconds = max(1, args.cycles // 10 // args.halves)
     server_argv = [
         args.server,
         f"server::synch_mode={'false' if args.realtime else 'true'}",
         "server::auto_mode=false",
         "server::coach_w_referee=true",
+        *([f"player::random_seed={args.seed}"] if args.seed >= 0 else []),
         f"server::game_logging={'true' if args.game_log else 'false'}",
         "server::text_logging=false",
-        f"server::half_time={halves}",
-        "server::nr_normal_halfs=1",
+        f"server::half_time={half_seconds}",
+        f"server::nr_normal_halfs={args.halves}",
         "server::nr_extra_halfs=0",
         "server::penalty_shoot_outs=false",
         f"server::port={port}",
@@ -210,8 +213,14 @@ def run(args: argparse.Namespace) -> dict:
         sampled, start_cycle = time.monotonic(), trainer.time
         deadline = time.monotonic() + args.timeout
         kill = tuple(int(v) for v in args.kill.split("@")) if args.kill else None
+        half_time_seen = None  # when the second half's before_kick_off began (its kick-off is the trainer's too)
         while trainer.mode != "time_over":
             trainer.poll()
+            if trainer.half_time and half_time_seen is None:
+                half_time_seen = time.monotonic()
+            if half_time_seen and trainer.mode == "before_kick_off" and time.monotonic() - half_time_seen > 2.0:
+                trainer.send("(change_mode kick_off_r)")
+                half_time_seen = 0.0  # done: a falsy non-None
             if time.monotonic() - sampled > 1.0:
                 meter.sample()
                 sampled = time.monotonic()
@@ -276,7 +285,11 @@ def main() -> int:
     ap.add_argument("--opponent", default="CFB")
     ap.add_argument("--players", type=int, default=11)
     ap.add_argument("--opponents", type=int, default=0, help="players of a second instance of our team")
-    ap.add_argument("--cycles", type=int, default=300, help="match length (multiple of 10)")
+    ap.add_argument("--cycles", type=int, default=300, help="match length (multiple of 10 per half)")
+    ap.add_argument(
+        "--halves", type=int, default=1, choices=(1, 2), help="halves (the other side kicks off the second)"
+    )
+    ap.add_argument("--seed", type=int, default=-1, help="the server's seed of heterogeneous player types")
     ap.add_argument("--port", type=int, default=6000)
     ap.add_argument("--realtime", action="store_true", help="real time (100 ms cycles) instead of synch mode")
     ap.add_argument(

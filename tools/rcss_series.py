@@ -2,10 +2,11 @@
 
     python tools/rcss_series.py --server $RCSSSERVER --opponent PYRUS \\
         --opponent-cmd "bash -c 'cd /path/to/Pyrus2D && ./start.sh -t {team} -p {port}'" \\
-        [--matches 5] [--cycles 2000] [--realtime] [--out DIR]
+        [--matches 5] [--cycles 2000] [--realtime] [--seed 0] [--out DIR]
 
 Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode unless
---realtime; our 11 players against the opponent's, started with its own command). From each
+--realtime; two halves; our 11 players against the opponent's, started with its own
+command; match n with the server's seed SEED+n). From each
 match's summary and game log (.rcg) it prints: the score, shots (kicks towards the opponent's
 goal from within 25 m of it), possession (cycles of play_on in which a player of that side was
 nearest the ball), our CPU per cycle, relaunches, and the share of our body commands the server
@@ -79,7 +80,8 @@ def play(args: argparse.Namespace, n: int) -> dict:
     out = Path(args.out) / f"match-{n}"
     argv = [sys.executable, str(HERE / "rcss_match.py"), "--server", args.server, "--players", "11"]
     argv += ["--cycles", str(args.cycles), "--opponent", args.opponent, "--opponent-cmd", args.opponent_cmd]
-    argv += ["--game-log", "--out", str(out), "--timeout", str(args.timeout)]
+    argv += ["--game-log", "--out", str(out), "--timeout", str(args.timeout), "--halves", "2"]
+    argv += ["--seed", str(args.seed + n)]
     if args.realtime:
         argv.append("--realtime")
     t0 = time.monotonic()
@@ -116,6 +118,7 @@ def main() -> int:
     ap.add_argument("--realtime", action="store_true")
     ap.add_argument("--timeout", type=float, default=3600.0, help="seconds each match may take")
     ap.add_argument("--out", default="rcss-series")
+    ap.add_argument("--seed", type=int, default=0, help="match n gets the server's player-type seed SEED+n")
     args = ap.parse_args()
     Path(args.out).mkdir(parents=True, exist_ok=True)
     print(

@@ -40,6 +40,7 @@ class Params:
     ball_size: float = 0.085
     ball_decay: float = 0.94
     ball_speed_max: float = 3.0
+    ball_accel_max: float = 2.7  # the most one kick adds to the ball's velocity
     ball_rand: float = 0.05
     player_size: float = 0.3
     player_decay: float = 0.4

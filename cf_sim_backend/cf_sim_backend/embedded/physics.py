@@ -75,7 +75,7 @@ def kick(world: World, p: SimPlayer, power: float, direction: float) -> bool:
     dir_diff = abs(norm_deg(ball_dir - p.body))
     dist_ball = max(0.0, ball_distance(world, p) - prm.player_size - prm.ball_size)
     rate = prm.kick_power_rate * (1.0 - 0.25 * dir_diff / 180.0 - 0.25 * dist_ball / prm.kickable_margin)
-    accel = power * rate
+    accel = min(power * rate, prm.ball_accel_max)
     angle = math.radians(p.body + _clamp(direction, -180.0, 180.0))
     b = world.ball
     b.vx, b.vy = _cap(b.vx + accel * math.cos(angle), b.vy + accel * math.sin(angle), prm.ball_speed_max)

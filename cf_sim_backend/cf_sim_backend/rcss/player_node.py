@@ -274,7 +274,7 @@ class RcssPlayerNode(GuardedNode, Node):
         acted = self.session.act()
         for text in acted.commands:
             self._send(text)
-        if acted.commands:
+        if acted.commands and not self.synch:
             # How long after the cycle's first message the commands went out (real time: a command
             # that reaches the server after the cycle ends runs a cycle late, and the next one not at all).
             stats = self.session.stats
