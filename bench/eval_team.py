@@ -14,7 +14,7 @@ import argparse
 import random
 import statistics
 
-from cf_decision.policy import cycles_to_ball, decide
+from cf_decision.policy import NEVER, SetPieceTaker, cycles_to_ball, decide
 from cf_decision.requests import same_request
 from cf_sim_backend.embedded.chaser import chase_commands
 from cf_sim_backend.embedded.sim import Simulator
@@ -30,6 +30,7 @@ class PolicyTeam:
         self.sim, self.side = sim, side
         self.rng = random.Random(seed)
         self.current: dict[int, tuple[tuple, object]] = {}
+        self.takers: dict[int, SetPieceTaker] = {}
         self.size = sum(1 for p in sim.world.players.values() if p.side is side)
 
     def commands(self) -> None:
@@ -37,15 +38,18 @@ class PolicyTeam:
         states = {
             p.number: observe(w, self.side, p.number, self.rng) for p in w.players.values() if p.side is self.side
         }
-        claims = {}
+        claims, may_touch = {}, {}
         for n, st in states.items():
+            may_touch[n] = self.takers.setdefault(n, SetPieceTaker()).may_touch(st)
             if st.ball and st.ball.positioning and st.me and st.me.positioning:
                 claims[n] = cycles_to_ball(
                     (st.me.positioning.x, st.me.positioning.y), (st.ball.positioning.x, st.ball.positioning.y)
                 )
+                claims[n] = claims[n] if may_touch[n] else NEVER
         for n, st in states.items():
             me = w.player(self.side, n)
-            decision = decide(st, n, self.size, claims)
+            decision = decide(st, n, self.size, claims, may_touch[n])
+            self.takers[n].decided(st, decision)
             key = (decision.method, decision.action)
             current = self.current.get(n)
             if current is None or not same_request(current[0], key):

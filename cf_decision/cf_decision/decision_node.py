@@ -33,7 +33,7 @@ from cf_lang.expr import to_sexp
 from cf_lang.ontology import Team, WorldState
 from cf_lang.sexp import dumps
 
-from .policy import Decision, cycles_to_ball, decide
+from .policy import NEVER, Decision, SetPieceTaker, cycles_to_ball, decide
 from .requests import ActionRequests
 
 
@@ -81,6 +81,7 @@ class DecisionNode(GuardedNode, Node):
         self.subscription = None
         self.last_inform = 0.0
         self.requests = ActionRequests()
+        self.taker = SetPieceTaker()  # the rules forbid our set piece's taker a second touch
         self.create_timer(0.2, self._watch_providers)
         self.last_time: int | None = None  # the game time of the last perception
         self.create_timer(30.0, self.log_stats)
@@ -132,8 +133,10 @@ class DecisionNode(GuardedNode, Node):
         self.last_time = state.time
         now = time.monotonic()
         claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
-        decision = decide(state, self.number, self.team_size, claims)
-        self._announce(state)
+        may_touch = self.taker.may_touch(state)
+        decision = decide(state, self.number, self.team_size, claims, may_touch)
+        self.taker.decided(state, decision)
+        self._announce(state, may_touch)
         if self.requests.wants(decision.method, decision.action):
             self._request(decision)
 
@@ -152,13 +155,15 @@ class DecisionNode(GuardedNode, Node):
         # about the request in force, which must not be sent again because of it.
         self.requests.answered(future, future.result().ok)
 
-    def _announce(self, state: WorldState) -> None:
-        """Tell team-mates' decision components how soon I can reach the ball."""
+    def _announce(self, state: WorldState, may_touch: bool = True) -> None:
+        """Tell team-mates' decision components how soon I can reach the ball (never, while I may not touch it)."""
         if not (state.ball and state.ball.positioning and state.me and state.me.positioning):
             return
         eta = cycles_to_ball(
             (state.me.positioning.x, state.me.positioning.y), (state.ball.positioning.x, state.ball.positioning.y)
         )
+        if not may_touch:
+            eta = NEVER
         mates = [
             e.name
             for e in self.agent.providers("PlayerDecision", team=self.team)

@@ -11,6 +11,9 @@ What it does, in order:
   on the line between ball and goal centre;
 - with the ball: shoot when close enough with a free line, else pass to the
   best open team-mate ahead, else dribble towards the goal;
+- at our set piece the player with the ball passes (backwards if need be) or
+  kicks long, never dribbles, and then leaves the ball to others until
+  somebody else has touched it (the rules forbid the taker a second touch);
 - the team-mate chosen to go for the ball (fastest to it; ties to the lower
   number) intercepts; the others hold their formation position, shifted with
   the ball, facing the ball.
@@ -33,6 +36,19 @@ KICKABLE = 1.0
 SHOOT_RANGE = 22.0
 PLAYER_SPEED = 0.8  # m per cycle, for time-to-ball estimates
 CLAIM_MARGIN = 2  # cycles: someone must be this much faster to take the ball from the current claimer
+OUR_SET_PIECES = frozenset(
+    {
+        PlayMode.KICK_OFF_OUR,
+        PlayMode.KICK_IN_OUR,
+        PlayMode.CORNER_KICK_OUR,
+        PlayMode.GOAL_KICK_OUR,
+        PlayMode.FREE_KICK_OUR,
+    }
+)
+KICKING = frozenset({"shoot", "pass", "dribble", "kick"})
+TOUCHED = 1.5  # m: another player this close to the ball has (or may have) touched it
+TAKER_MEMORY = 100  # cycles after which a set piece's taker plays on as usual
+NEVER = 10**6  # cycles to the ball of a player who may not touch it
 
 
 @dataclass(frozen=True)
@@ -111,7 +127,62 @@ def choose_pass(state: WorldState, me: tuple[float, float]) -> Player | None:
     return best
 
 
+def choose_safe_pass(state: WorldState, me: tuple[float, float]) -> Player | None:
+    """The most open team-mate 5-30 m away with a free passing line, ahead or not."""
+    for mate, openness in open_mates(state):
+        here = _xy(mate.positioning)
+        if 5.0 <= _dist(me, here) <= 30.0 and openness >= 2.0 and line_is_free(state, me, here):
+            return mate
+    return None
+
+
+def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
+    """Our set piece: one touch only, so pass, or kick long into the opponents' half."""
+    if _dist(me, GOAL) <= SHOOT_RANGE:
+        return Decision("shoot", act.Shoot(target=_point(FIELD_HALF_LENGTH, 0.0), power=100.0), "set piece near goal")
+    mate = choose_pass(state, me) or choose_safe_pass(state, me)
+    if mate is not None:
+        to = Player(player_number=mate.player_number, which_team=Team.OUR)
+        return Decision("pass", act.Pass(to=to), f"set piece to team-mate {mate.player_number}")
+    target = _point(min(FIELD_HALF_LENGTH - 10.0, me[0] + 35.0), me[1] * 0.5)
+    return Decision("pass", act.Pass(target=target, power=100.0), "set piece: kick long")
+
+
+class SetPieceTaker:
+    """Remembers that this player took our set piece, until somebody else has touched the ball.
+
+    The rules (rcssserver's free_kick_fault, and the embedded simulator's) forbid the taker a
+    second touch before another player's; the decision asks :meth:`may_touch` before it decides
+    and tells :meth:`decided` what it chose.
+    """
+
+    def __init__(self) -> None:
+        self.took_at: int | None = None
+
+    def may_touch(self, state: WorldState) -> bool:
+        if self.took_at is None:
+            return True
+        mode = state.game.play_mode if state.game else PlayMode.PLAY_ON
+        if mode in OUR_SET_PIECES:
+            return True  # not kicked yet (the ball is still in place)
+        ball = _xy(state.ball.positioning) if state.ball and state.ball.positioning else None
+        someone_else = ball is not None and any(
+            p.positioning is not None and _dist(_xy(p.positioning), ball) <= TOUCHED for p in state.players
+        )
+        if mode is not PlayMode.PLAY_ON or someone_else or state.time - self.took_at > TAKER_MEMORY:
+            self.took_at = None
+        return self.took_at is None
+
+    def decided(self, state: WorldState, decision: Decision) -> None:
+        mode = state.game.play_mode if state.game else PlayMode.PLAY_ON
+        if mode in OUR_SET_PIECES and decision.method in KICKING:
+            self.took_at = state.time
+
+
 def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
+    mode = state.game.play_mode if state.game else PlayMode.PLAY_ON
+    if mode in OUR_SET_PIECES:
+        return set_piece_kick(state, me)
     goal_dist = _dist(me, GOAL)
     if goal_dist <= SHOOT_RANGE:
         # Aim at the post side the goalkeeper covers least.
@@ -152,8 +223,11 @@ def goalkeeper(state: WorldState, me: tuple[float, float], ball: tuple[float, fl
     return Decision("turnToDirection", act.TurnToDirection(direction=0.0), "face the field")
 
 
-def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int]) -> Decision:
-    """The action for player ``number`` now. ``claims``: team-mates' announced times to the ball."""
+def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int], may_touch: bool = True) -> Decision:
+    """The action for player ``number`` now. ``claims``: team-mates' announced times to the ball.
+
+    ``may_touch`` False: this player took our set piece and nobody else has touched the ball yet.
+    """
     me_pos = _xy(state.me.positioning) if state.me else None
     if me_pos is None:
         return Decision("turn", act.Turn(angle=1.0), "lost: look around")
@@ -169,12 +243,14 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
     if mode.value.endswith("_opp") and mode is not PlayMode.PLAY_ON:
         x, y = home_position(number, team_size, ball_x=ball[0])  # their set piece: keep shape
         return _hold(me_pos, (x, y), "their set piece: keep shape")
-    if role is Role.GOALKEEPER:
+    if role is Role.GOALKEEPER and may_touch:
         return goalkeeper(state, me_pos, ball)
-    if _dist(me_pos, ball) <= KICKABLE:
+    if _dist(me_pos, ball) <= KICKABLE and may_touch:
         return with_ball(state, number, me_pos)
     my_eta = cycles_to_ball(me_pos, ball)
-    if choose_interceptor(number, my_eta, claims):
+    if not may_touch:
+        my_eta = NEVER  # the ball is someone else's until they have touched it
+    if may_touch and choose_interceptor(number, my_eta, claims):
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
     x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1])
     return _hold(me_pos, (x, y), f"{role.value}: hold position")

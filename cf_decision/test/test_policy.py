@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from cf_decision.policy import choose_interceptor, choose_pass, decide, line_is_free
+from cf_decision.policy import NEVER, SetPieceTaker, choose_interceptor, choose_pass, decide, line_is_free
 from cf_decision.roles import Role, home_position, role_of
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
@@ -84,3 +84,28 @@ def test_goalkeeper_guards_catches_clears():
     assert d.method == "catch"
     d = decide(state((-40.0, 10.0), ball=(20.0, 0.0), **keeper), 1, 11, {})
     assert d.method == "moveTo" and d.action.target.x < -48
+
+
+def test_at_our_set_piece_pass_back_or_kick_long_never_dribble():
+    back = [mate(6, -12.0, 3.0), opp(9, 8.0, 0.0)]
+    d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=back, mode=PlayMode.KICK_OFF_OUR), 10, 11, {})
+    assert d.method == "pass" and d.action.to.player_number == 6  # backwards: no open mate ahead
+    d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=[opp(9, 8.0, 0.0)], mode=PlayMode.FREE_KICK_OUR), 10, 11, {})
+    assert d.method == "pass" and d.action.target is not None and d.action.target.x > 20.0  # nobody: kick long
+    d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=back), 10, 11, {})
+    assert d.method == "dribble"  # in play_on the same player dribbles
+
+
+def test_the_taker_of_our_set_piece_leaves_the_ball_until_someone_else_touched_it():
+    taker = SetPieceTaker()
+    kick_in = state((0.0, 30.0), ball=(0.5, 30.0), mode=PlayMode.KICK_IN_OUR)
+    assert taker.may_touch(kick_in)
+    taker.decided(kick_in, decide(kick_in, 7, 11, {}))
+    # The kick went 3 m: the ball is still the taker's nearest, and play is on.
+    after = state((0.0, 30.0), ball=(3.0, 29.0), players=[mate(8, 15.0, 20.0)])
+    assert not taker.may_touch(after)
+    d = decide(after, 7, 11, {7: 2, 8: 15}, may_touch=False)
+    assert d.method not in ("intercept", "pass", "dribble", "shoot")
+    assert NEVER > 10**5
+    touched = state((0.0, 30.0), ball=(9.0, 26.0), players=[mate(8, 9.5, 26.5)])
+    assert taker.may_touch(touched) and taker.may_touch(after)  # a team-mate reached it: play on

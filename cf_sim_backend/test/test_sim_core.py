@@ -64,6 +64,28 @@ def test_a_move_counts_before_a_kick_off_and_not_once_it_is_called():
     assert (p.x, p.y) == (-20.0, 5.0)
 
 
+def test_a_set_pieces_taker_touching_the_ball_again_first_gives_the_opponents_a_free_kick():
+    sim = sim_with((Side.LEFT, 7, 0.0, 0.0, 0.0), (Side.LEFT, 8, 10.0, 0.0, 180.0), (Side.RIGHT, 9, 30.0, 0.0, 180.0))
+    w = sim.world
+    referee.start_set_piece(w, "free_kick", Side.LEFT, 0.5, 0.0)
+    sim.command(Side.LEFT, 7, "kick", 10, 0)  # a short free kick: the ball rolls ~0.3 m a cycle
+    sim.step()
+    assert w.mode == "play_on"
+    sim.command(Side.LEFT, 7, "kick", 50, 0)  # the taker again, nobody else in between
+    assert "free kick fault l 7" in sim.step()
+    assert w.mode == "free_kick_r" and w.ball.vx == 0.0
+    # Another player's touch in between makes the taker's next touch legal.
+    referee.start_set_piece(w, "free_kick", Side.LEFT, 0.5, 0.0)
+    w.player(Side.LEFT, 7).x, w.player(Side.LEFT, 8).x = 0.0, 0.0  # 8 beside 7 (behind the ball: onside)
+    w.player(Side.LEFT, 8).y = 0.6
+    sim.command(Side.LEFT, 7, "kick", 5, 0)
+    sim.step()
+    sim.command(Side.LEFT, 8, "kick", 5, 180)
+    assert sim.step() == [] and w.last_touch == (Side.LEFT, 8)
+    sim.command(Side.LEFT, 7, "kick", 5, 0)
+    assert not any("fault" in e for e in sim.step()) and w.mode == "play_on"
+
+
 def test_dash_speed_cap_decay_and_turn_inertia():
     sim = sim_with((Side.LEFT, 3, 0.0, 0.0, 0.0))
     p = sim.world.player(Side.LEFT, 3)

@@ -50,6 +50,8 @@ class Simulator:
         self._neck: dict[tuple[Side, int], float] = {}
         self._offside: dict[Side, set[int]] = {Side.LEFT: set(), Side.RIGHT: set()}
         self._stopped = 0
+        # Who took the set piece that began this spell of play_on (and when it began), until another touch.
+        self._taker: tuple[tuple[Side, int], int] | None = None
         self.stats = {
             "kicks": {Side.LEFT: 0, Side.RIGHT: 0},
             "possession": {Side.LEFT: 0, Side.RIGHT: 0},
@@ -168,6 +170,11 @@ class Simulator:
         piece_side = referee.set_piece_side(w)
         if piece_side is not None and piece_side is not p.side:
             return None  # opponents may not play the ball in a set piece
+        if piece_side is None and self._taker == (p.key, w.mode_since) and physics.kickable(w, p):
+            # As rcssserver: a set piece's taker may not touch the ball again before another player.
+            self._taker = None
+            referee.start_set_piece(w, "free_kick", p.side.other, w.ball.x, w.ball.y)
+            return f"free kick fault {p.side.value} {p.number}"
         if p.number in self._offside[p.side] and physics.kickable(w, p):
             self._offside = {Side.LEFT: set(), Side.RIGHT: set()}
             referee.start_set_piece(w, "free_kick", p.side.other, p.x, p.y)
@@ -176,6 +183,7 @@ class Simulator:
         if not touched:
             return None
         w.last_touch = p.key
+        self._taker = None
         self.stats["kicks"][p.side] += 1
         goal_x = p.side.sign * w.params.field_length / 2
         aim = direction_deg(w.ball.x, w.ball.y, goal_x, 0.0)
@@ -188,6 +196,7 @@ class Simulator:
         self._offside[p.side.other] = set()
         if piece_side is not None:
             referee.set_mode(w, "play_on")
+            self._taker = (p.key, w.mode_since)
         return f"shot {p.side.value} {p.number}" if shot else None
 
     def snapshot(self) -> dict:
