@@ -9,7 +9,8 @@ Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode 
 command; match n with the server's seed SEED+n). From each
 match's summary and game log (.rcg) it prints: the score, shots (kicks towards the opponent's
 goal from within 25 m of it), possession (cycles of play_on in which a player of that side was
-nearest the ball), our CPU per cycle, relaunches, and the share of our body commands the server
+nearest the ball), offsides and faults (free kick, catch, back pass) called against each side,
+our CPU per cycle, relaunches, and the share of our body commands the server
 executed; then the series' totals. The opponent is never part of this repository: build it
 beside it (see docs/rcssserver.md).
 """
@@ -70,10 +71,23 @@ def match_stats(rcg: Path, our_side: str) -> dict:
             last_kicks[key] = kicks
     theirs = "r" if our_side == "l" else "l"
     total = max(1, possession["l"] + possession["r"])
+    calls = referee_calls(rcg)
     return {
         "shots": [shots[our_side], shots[theirs]],
         "possession": [possession[our_side] / total, possession[theirs] / total],
+        "offsides": [calls.get(f"offside_{our_side}", 0), calls.get(f"offside_{theirs}", 0)],
+        "faults": [sum(n for k, n in calls.items() if k.endswith(f"fault_{s}")) for s in (our_side, theirs)],
     }
+
+
+def referee_calls(rcg: Path) -> dict[str, int]:
+    """How often each play mode was called (offside_l: a left player offside; *_fault_l: a left player's fault)."""
+    calls: dict[str, int] = {}
+    for line in rcg.read_text(errors="replace").splitlines():
+        if line.startswith("(playmode "):
+            mode = line.strip("()").split()[2]
+            calls[mode] = calls.get(mode, 0) + 1
+    return calls
 
 
 def play(args: argparse.Namespace, n: int) -> dict:
@@ -125,19 +139,23 @@ def main() -> int:
         f"our team v {args.opponent}: {args.matches} matches of {args.cycles} cycles, "
         f"{'real time' if args.realtime else 'synch mode'}\n"
     )
-    print("| match | score | shots | possession | our CPU ms/cycle | relaunches | commands executed |")
-    print("|---:|---:|---:|---:|---:|---:|---:|")
+    print(
+        "| match | score | shots | possession | offsides | faults | our CPU ms/cycle | relaunches | commands executed |"
+    )
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     rows = []
     for n in range(1, args.matches + 1):
         r = play(args, n)
         rows.append(r)
         if "error" in r:
-            print(f"| {n} | failed: {r['error'][:100]} | | | | | |", flush=True)
+            print(f"| {n} | failed: {r['error'][:100]} | | | | | | | |", flush=True)
             continue
         shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
+        off, faults = r.get("offsides", ["?", "?"]), r.get("faults", ["?", "?"])
         print(
             f"| {n} | {r['score'][0]}:{r['score'][1]} | {shots[0]}:{shots[1]} | {poss[0]:.0%}:{poss[1]:.0%} |"
-            f" {r['cpu_ms_per_cycle']} | {r['relaunched']} | {r['executed']:.1%} |",
+            f" {off[0]}:{off[1]} | {faults[0]}:{faults[1]} | {r['cpu_ms_per_cycle']} | {r['relaunched']} |"
+            f" {r['executed']:.1%} |",
             flush=True,
         )
     played = [r for r in rows if "error" not in r]

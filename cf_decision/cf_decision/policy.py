@@ -10,7 +10,8 @@ What it does, in order:
 - goalkeeper: catch a ball in reach, clear a kickable ball, else guard the goal
   on the line between ball and goal centre;
 - with the ball: shoot when close enough with a free line, else pass to the
-  best open team-mate ahead, else dribble towards the goal;
+  best open team-mate ahead, else (pressed in our own third) clear it long
+  towards the wing, else dribble towards the goal;
 - at our set piece the player with the ball passes (backwards if need be) or
   kicks long, never dribbles, and then leaves the ball to others until
   somebody else has touched it (the rules forbid the taker a second touch);
@@ -49,6 +50,7 @@ KICKING = frozenset({"shoot", "pass", "dribble", "kick"})
 TOUCHED = 1.5  # m: another player this close to the ball has (or may have) touched it
 TAKER_MEMORY = 100  # cycles after which a set piece's taker plays on as usual
 NEVER = 10**6  # cycles to the ball of a player who may not touch it
+CLEAR_LINE = -FIELD_HALF_LENGTH / 3  # behind it, a pressed player clears the ball instead of dribbling
 
 
 @dataclass(frozen=True)
@@ -193,6 +195,10 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     if mate is not None and (me[0] < 25.0 or not line_is_free(state, me, GOAL, 3.0)):
         to = Player(player_number=mate.player_number, which_team=Team.OUR)
         return Decision("pass", act.Pass(to=to), f"open team-mate {mate.player_number}")
+    if me[0] < CLEAR_LINE and not line_is_free(state, me, (me[0] + 10.0, me[1] * 0.7), 4.0):
+        # Pressed in our own third: no dribbling there; clear the ball long towards the wing.
+        wing = 25.0 if me[1] >= 0 else -25.0
+        return Decision("pass", act.Pass(target=_point(me[0] + 40.0, wing), power=100.0), "clear the ball")
     target = _point(min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0), me[1] * 0.7)
     return Decision("dribble", act.Dribble(target=target, speed=70.0), "towards goal")
 

@@ -109,3 +109,10 @@ def test_the_taker_of_our_set_piece_leaves_the_ball_until_someone_else_touched_i
     assert NEVER > 10**5
     touched = state((0.0, 30.0), ball=(9.0, 26.0), players=[mate(8, 9.5, 26.5)])
     assert taker.may_touch(touched) and taker.may_touch(after)  # a team-mate reached it: play on
+
+
+def test_pressed_in_our_own_third_clear_long_to_the_wing_instead_of_dribbling():
+    d = decide(state((-40.0, 5.0), ball=(-39.5, 5.0), players=[opp(9, -36.0, 4.0)]), 4, 11, {})
+    assert d.method == "pass" and d.action.target.x > -5.0 and d.action.target.y == 25.0
+    d = decide(state((-40.0, 5.0), ball=(-39.5, 5.0), players=[opp(9, -20.0, 30.0)]), 4, 11, {})
+    assert d.method == "dribble"  # not pressed: carry it out
