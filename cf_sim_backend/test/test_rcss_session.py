@@ -16,7 +16,7 @@ from cf_lang.ontology import PlayMode, Team
 from cf_lang.ontology import actions as act
 from cf_lang.ontology.positioning import AbsolutePositioning
 from cf_sim_backend.embedded.rcg import RCSS_PLAYMODES
-from cf_sim_backend.rcss.belief import PLAYER_MEMORY, SIM_MODES, UNSURE, Belief, sim_mode, world_state
+from cf_sim_backend.rcss.belief import PLAYER_MEMORY, SIM_MODES, UNSURE, Belief, Track, sim_mode, world_state
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse, well_formed
 from cf_sim_backend.rcss.session import PlayerSession, rcss_command
 from cf_sim_backend.rcss.trace import belief_errors, read_trace
@@ -138,6 +138,39 @@ def _belief(side: str = "l", number: int = 7) -> Belief:
 
 
 SEE_CENTRE = "((f c) 10 0) ((f c t) 35.44 -73.6) ((f c b) 35.44 73.6)"  # at (-10, 0), facing +x
+
+
+def test_a_ball_not_seen_where_it_would_be_seen_is_no_longer_believed():
+    b = _belief()
+    b.update(parse("(sense_body 10 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    b.update(parse(f"(see 10 {SEE_CENTRE} ((b) 0.9 0 0 0))"))  # at our feet
+    assert b.ball is not None and b.ball.x == pytest.approx(-9.1, abs=0.1)
+    b.update(parse("(sense_body 11 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    b.update(parse(f"(see 11 {SEE_CENTRE})"))  # an opponent took it: the server would show it within 3 m
+    assert b.ball is None
+    session = PlayerSession("CF")
+    session.belief = b
+    session.skill = skill_for("intercept", act.Intercept(), Side.LEFT, b.world(), b.world().player(Side.LEFT, 7))
+    acted = session.act()
+    assert acted.commands == [] and acted.status == "failed" and "out of sight" in acted.reason
+    # Far away behind our back a ball is not expected in the see: the estimate stays.
+    b.update(parse(f"(see 12 {SEE_CENTRE} ((b) 20 179 0 0))"))
+    b.update(parse(f"(see 13 {SEE_CENTRE})"))
+    assert b.ball is not None and b.ball.x == pytest.approx(-30.0, abs=0.5)
+
+
+@pytest.mark.parametrize(
+    "mode, where",
+    [("kick_in_r", (20.0, 34.0)), ("goal_kick_l", (-47.0, 9.16)), ("corner_kick_l", (51.5, 33.0))],
+)
+def test_the_ball_is_believed_where_the_referee_places_it_for_a_set_piece(mode, where):
+    b = _belief()
+    b.update(parse("(sense_body 10 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    b.ball = Track(20.0, 36.0, 0.5, 0.5, 0.2, 10) if mode == "kick_in_r" else Track(-53.0, 5.0, 0.0, 0.0, 0.2, 10)
+    if mode == "corner_kick_l":
+        b.ball = Track(53.0, 20.0, 1.0, 0.0, 0.2, 10)
+    b.update(parse(f"(hear 11 referee {mode})"))
+    assert (b.ball.x, b.ball.y) == pytest.approx(where) and (b.ball.vx, b.ball.vy) == (0.0, 0.0)
 
 
 def test_players_are_tracked_by_team_and_number_with_ages_then_forgotten():

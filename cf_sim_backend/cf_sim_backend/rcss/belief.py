@@ -213,6 +213,7 @@ class Belief:
             self.note_error(f"unknown referee message {mode!r}: the play mode stays {self.mode}")
             return
         self.server_mode = mode
+        self._place_ball(mode)
         if mode.startswith(("goal_l_", "goal_r_")) and mode[7:].isdigit():
             self.score[Side(mode[5])] = int(mode[7:])
         if mode == "half_time":
@@ -223,6 +224,23 @@ class Belief:
             # piece): we know nothing until the next see.
             self.me.sigma = max(self.me.sigma, UNSURE)
         self.mode = ours
+
+    def _place_ball(self, mode: str) -> None:
+        """Where the server puts the ball for a kick-in, goal kick or corner (rcssserver's referee)."""
+        b = self.ball
+        if b is None or not mode.startswith(("kick_in_", "goal_kick_", "corner_kick_")):
+            return
+        half_length, half_width = FIELD.length / 2, FIELD.width / 2
+        left = mode.endswith("_l")
+        if mode.startswith("kick_in_"):
+            x, y = max(-half_length, min(half_length, b.x)), max(-half_width, min(half_width, b.y))
+        elif mode.startswith("goal_kick_"):
+            x = (-half_length + FIELD.goal_area_length) if left else (half_length - FIELD.goal_area_length)
+            y = math.copysign(FIELD.goal_area_width / 2, b.y)
+        else:
+            x = (half_length - 1.0) if left else (-half_length + 1.0)
+            y = math.copysign(half_width - 1.0, b.y)
+        self.ball = Track(x, y, 0.0, 0.0, max(b.sigma, 1.0), b.seen)
 
     def _on_sense_body(self, msg: list) -> None:
         self.time = self.sense_time = int(msg[1])
@@ -316,6 +334,19 @@ class Belief:
                 self.players[(team, int(name[2]))] = track
             else:
                 self.anonymous.append((team, track))
+        if self.ball is not None and self.ball.seen != see.time and self._should_see(self.ball):
+            # The server shows the ball wherever it is in the view cone, and within visible_distance
+            # all around: not seen there, it is not where we believed (taken, kicked, placed).
+            self.ball = None
+
+    def _should_see(self, track: Track) -> bool:
+        """Whether a see would show an object at ``track`` (well inside the cone, or close all around)."""
+        me = self.me
+        d = math.hypot(track.x - me.x, track.y - me.y)
+        close = float(self.server.get("visible_distance", 3.0)) - 0.5
+        half = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}.get(me.view_width, 60.0) - 10.0
+        ahead = abs(norm_deg(math.degrees(math.atan2(track.y - me.y, track.x - me.x)) - me.head)) < half
+        return me.sigma < 5.0 and (d < close or (ahead and 2.0 < d < 50.0))
 
     def sent(self, msg: list) -> None:
         """Take a command we sent (parsed) into account: what a turn or a move will do to our pose, a kick to the ball.

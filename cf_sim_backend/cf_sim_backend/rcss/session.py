@@ -18,6 +18,7 @@ from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse
 from cf_sim_backend.skills import Command, Skill
 
 _EXECUTED = ("kick", "dash", "turn", "move", "catch")  # sense_body counters of body commands
+_BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "kick", "catch", "tackle"})
 _SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
 
 
@@ -140,6 +141,11 @@ class PlayerSession:
         b = self.belief
         if self.skill is None or not self.ready or self.acted == b.time or b.mode == "time_over":
             return Acted()  # (after time over the server executes nothing: a command then is only noise)
+        if b.ball is None and self.skill.name in _BALL_SKILLS:
+            # The last see showed that the ball is not where we believed: do not play a ball we
+            # cannot place (the decision, told, looks for it).
+            skill, self.skill = self.skill, None
+            return Acted([], "failed", "the ball is out of sight", skill.name, skill.cycles)
         world = b.world()
         me = world.player(b.side, b.number)
         step = self.skill.step(world, me)
