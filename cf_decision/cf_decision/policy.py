@@ -16,8 +16,9 @@ What it does, in order:
   kicks long, never dribbles, and then leaves the ball to others until
   somebody else has touched it (the rules forbid the taker a second touch);
 - the team-mate chosen to go for the ball (fastest to it; ties to the lower
-  number) intercepts; the others hold their formation position, shifted with
-  the ball, facing the ball.
+  number) intercepts; in our half, when an opponent has the ball, the second
+  fastest presses too; the others hold their formation position, shifted
+  with the ball, facing the ball.
 """
 
 from __future__ import annotations
@@ -83,6 +84,20 @@ def choose_interceptor(my_number: int, my_eta: int, claims: dict[int, int]) -> b
         return True
     eta, number = best
     return my_eta + (0 if my_eta < eta else CLAIM_MARGIN) < eta or (my_eta == eta and my_number < number)
+
+
+def second_fastest(my_number: int, my_eta: int, claims: dict[int, int]) -> bool:
+    """Whether exactly one team-mate is faster to the ball than I am (ties to the lower number)."""
+    ahead = sum(1 for n, eta in claims.items() if n != my_number and (eta, n) < (my_eta, my_number))
+    return ahead == 1
+
+
+def opponent_on_ball(state: WorldState, ball: tuple[float, float]) -> bool:
+    """An opponent has the ball at his feet (within 2 m)."""
+    return any(
+        p.which_team is Team.OPP and p.positioning is not None and _dist(_xy(p.positioning), ball) < 2.0
+        for p in state.players
+    )
 
 
 def open_mates(state: WorldState) -> list[tuple[Player, float]]:
@@ -258,6 +273,8 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         my_eta = NEVER  # the ball is someone else's until they have touched it
     if may_touch and choose_interceptor(number, my_eta, claims):
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
+    if may_touch and ball[0] < 0.0 and opponent_on_ball(state, ball) and second_fastest(number, my_eta, claims):
+        return Decision("intercept", act.Intercept(), f"press the opponent on the ball ({my_eta} cycles)")
     x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1])
     return _hold(me_pos, (x, y), f"{role.value}: hold position")
 

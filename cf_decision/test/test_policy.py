@@ -116,3 +116,13 @@ def test_pressed_in_our_own_third_clear_long_to_the_wing_instead_of_dribbling():
     assert d.method == "pass" and d.action.target.x > -5.0 and d.action.target.y == 25.0
     d = decide(state((-40.0, 5.0), ball=(-39.5, 5.0), players=[opp(9, -20.0, 30.0)]), 4, 11, {})
     assert d.method == "dribble"  # not pressed: carry it out
+
+
+def test_in_our_half_the_second_fastest_presses_an_opponent_on_the_ball():
+    players = [opp(9, -20.5, 0.0)]
+    press = decide(state((-15.0, 5.0), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})
+    assert press.method == "intercept" and "press" in press.why
+    hold = decide(state((-15.0, 5.0), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 5: 4, 6: 7})
+    assert hold.method != "intercept"  # third fastest: holds
+    loose = decide(state((-15.0, 5.0), ball=(-20.0, 0.0)), 6, 11, {4: 3, 6: 7})
+    assert loose.method != "intercept"  # nobody on the ball: one goes
