@@ -86,6 +86,21 @@ def choose_interceptor(my_number: int, my_eta: int, claims: dict[int, int]) -> b
     return my_eta + (0 if my_eta < eta else CLAIM_MARGIN) < eta or (my_eta == eta and my_number < number)
 
 
+def win_the_ball(ball: tuple[float, float], why: str) -> Decision:
+    """Go for a ball an opponent has and play it the moment it is in reach, in one request.
+
+    Intercepting first and deciding then would give the opponent the cycles our decision and
+    action need to see the ball at our feet: the action's kick skills approach the ball
+    themselves. In our half: clear it long towards the wing; in theirs: take it towards the goal.
+    """
+    if ball[0] < 0.0:
+        x = min(30.0, round((ball[0] + 35.0) / 10.0) * 10.0)  # on a 10 m grid: one request, not one a cycle
+        target = _point(x, 25.0 if ball[1] >= 0 else -25.0)
+        return Decision("pass", act.Pass(target=target, power=100.0), why + ": win it and clear it")
+    target = _point(FIELD_HALF_LENGTH - 8.0, 0.0)
+    return Decision("dribble", act.Dribble(target=target, speed=70.0), why + ": win it and go")
+
+
 def second_fastest(my_number: int, my_eta: int, claims: dict[int, int]) -> bool:
     """Whether exactly one team-mate is faster to the ball than I am (ties to the lower number)."""
     ahead = sum(1 for n, eta in claims.items() if n != my_number and (eta, n) < (my_eta, my_number))
@@ -271,10 +286,13 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
     my_eta = cycles_to_ball(me_pos, ball)
     if not may_touch:
         my_eta = NEVER  # the ball is someone else's until they have touched it
+    contested = opponent_on_ball(state, ball)
     if may_touch and choose_interceptor(number, my_eta, claims):
+        if contested:
+            return win_the_ball(ball, f"fastest to a contested ball ({my_eta} cycles)")
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
-    if may_touch and ball[0] < 0.0 and opponent_on_ball(state, ball) and second_fastest(number, my_eta, claims):
-        return Decision("intercept", act.Intercept(), f"press the opponent on the ball ({my_eta} cycles)")
+    if may_touch and ball[0] < 0.0 and contested and second_fastest(number, my_eta, claims):
+        return win_the_ball(ball, f"press the opponent on the ball ({my_eta} cycles)")
     x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1])
     return _hold(me_pos, (x, y), f"{role.value}: hold position")
 
