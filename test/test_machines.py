@@ -232,8 +232,14 @@ def test_a_match_across_two_hosts_with_a_process_on_host_b_killed_and_relaunched
         os.killpg(red.pid, signal.SIGKILL)  # host B's team process: the ComMAg must have it started on B
         wait(lambda: commag_log.read_text().count("red_1_decision: relaunched") >= 1, 120, "the red team relaunched")
         assert "started by launcher_host_b on 'host_b'" in commag_log.read_text()
-        pid = int(dict(registered()["red_1_decision"]["record"]["metadata"])["pid"])
-        assert pid != red.pid and in_ns_namespace(pid, hosts.b)  # running on host B again
+
+        def new_pid() -> int:
+            record = registered().get("red_1_decision")
+            return int(dict(record["record"]["metadata"])["pid"]) if record else red.pid
+
+        # The registry file is written a moment after the event (its store thread): wait for the new record.
+        wait(lambda: new_pid() != red.pid, 30, "the relaunched record in the persisted registry")
+        assert in_ns_namespace(new_pid(), hosts.b)  # running on host B again
         wait(lambda: '"end"' in log.read_text(), 180, "the end of the match")
         end = json.loads(log.read_text().splitlines()[-1])
         assert end["stats"]["kicks"]["l"] + end["stats"]["kicks"]["r"] > 0

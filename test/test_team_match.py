@@ -38,7 +38,9 @@ def start_decision(procs, tag, number, team_size):
 
 
 def test_decision_team_plays_and_survives_losing_an_action_provider(procs, probe, tag, tmp_path):
-    start_commag(procs, tag, tmp_path)
+    # On a loaded machine (two suites side by side) a relaunched process took more than the default
+    # 5 s to start and register, and each retry killed the slow one: give it the time.
+    start_commag(procs, tag, tmp_path, "startup_grace:=20.0")
     start_sim_process(procs, tag, tmp_path, half_cycles=500)
     for number in (1, 2):
         start_player_component(procs, tag, "perception", "l", number)
@@ -92,7 +94,7 @@ def test_decision_team_plays_and_survives_losing_an_action_provider(procs, probe
     os.kill(pid, signal.SIGKILL)
     probe.wait_kind(first, "suspect", timeout=20)
     probe.spin_until(lambda: moved(2), timeout=10, what="blue 2 still playing through the twin")
-    probe.wait_kind(first, "relaunched", timeout=30)
+    probe.wait_kind(first, "relaunched", timeout=60)
     probe.spin_until(lambda: '"end"' in log.read_text(), timeout=120, what="the end of the match")
     end = json.loads(log.read_text().splitlines()[-1])
     assert end["stats"]["kicks"]["l"] > 0, end  # the decision team played the ball
