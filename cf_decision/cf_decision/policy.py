@@ -65,6 +65,10 @@ def _xy(pos: AbsolutePositioning | None) -> tuple[float, float] | None:
     return (pos.x, pos.y) if pos is not None else None
 
 
+def play_mode(state: WorldState) -> PlayMode:
+    return state.game.play_mode if state.game else PlayMode.PLAY_ON
+
+
 def _dist(a: tuple[float, float], b: tuple[float, float]) -> float:
     return math.hypot(a[0] - b[0], a[1] - b[1])
 
@@ -194,7 +198,7 @@ class SetPieceTaker:
     def may_touch(self, state: WorldState) -> bool:
         if self.took_at is None:
             return True
-        mode = state.game.play_mode if state.game else PlayMode.PLAY_ON
+        mode = play_mode(state)
         if mode in OUR_SET_PIECES:
             return True  # not kicked yet (the ball is still in place)
         ball = _xy(state.ball.positioning) if state.ball and state.ball.positioning else None
@@ -206,13 +210,13 @@ class SetPieceTaker:
         return self.took_at is None
 
     def decided(self, state: WorldState, decision: Decision) -> None:
-        mode = state.game.play_mode if state.game else PlayMode.PLAY_ON
+        mode = play_mode(state)
         if mode in OUR_SET_PIECES and decision.method in KICKING:
             self.took_at = state.time
 
 
 def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
-    mode = state.game.play_mode if state.game else PlayMode.PLAY_ON
+    mode = play_mode(state)
     if mode in OUR_SET_PIECES:
         return set_piece_kick(state, me)
     goal_dist = _dist(me, GOAL)
@@ -268,7 +272,7 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
     if me_pos is None:
         return Decision("turn", act.Turn(angle=1.0), "lost: look around")
     role = role_of(number, team_size)
-    mode = state.game.play_mode if state.game else PlayMode.PLAY_ON
+    mode = play_mode(state)
     ball = _xy(state.ball.positioning) if state.ball and state.ball.positioning else None
 
     if mode in (PlayMode.BEFORE_KICK_OFF, PlayMode.GOAL_OUR, PlayMode.GOAL_OPP, PlayMode.HALF_TIME):
