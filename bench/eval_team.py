@@ -14,7 +14,7 @@ import argparse
 import random
 import statistics
 
-from cf_decision.policy import NEVER, SetPieceTaker, cycles_to_ball, decide
+from cf_decision.policy import NEVER, SetPieceTaker, decide, state_eta
 from cf_decision.requests import same_request
 from cf_sim_backend.embedded.chaser import chase_commands
 from cf_sim_backend.embedded.sim import Simulator
@@ -41,11 +41,9 @@ class PolicyTeam:
         claims, may_touch = {}, {}
         for n, st in states.items():
             may_touch[n] = self.takers.setdefault(n, SetPieceTaker()).may_touch(st)
-            if st.ball and st.ball.positioning and st.me and st.me.positioning:
-                claims[n] = cycles_to_ball(
-                    (st.me.positioning.x, st.me.positioning.y), (st.ball.positioning.x, st.ball.positioning.y)
-                )
-                claims[n] = claims[n] if may_touch[n] else NEVER
+            eta = state_eta(st)
+            if eta is not None:
+                claims[n] = eta if may_touch[n] else NEVER
         for n, st in states.items():
             me = w.player(self.side, n)
             decision = decide(st, n, self.size, claims, may_touch[n])

@@ -33,7 +33,7 @@ from cf_lang.expr import to_sexp
 from cf_lang.ontology import Team, WorldState
 from cf_lang.sexp import dumps
 
-from .policy import NEVER, Decision, SetPieceTaker, cycles_to_ball, decide
+from .policy import NEVER, Decision, SetPieceTaker, decide, state_eta
 from .requests import ActionRequests
 
 
@@ -157,11 +157,9 @@ class DecisionNode(GuardedNode, Node):
 
     def _announce(self, state: WorldState, may_touch: bool = True) -> None:
         """Tell team-mates' decision components how soon I can reach the ball (never, while I may not touch it)."""
-        if not (state.ball and state.ball.positioning and state.me and state.me.positioning):
+        eta = state_eta(state)
+        if eta is None:
             return
-        eta = cycles_to_ball(
-            (state.me.positioning.x, state.me.positioning.y), (state.ball.positioning.x, state.ball.positioning.y)
-        )
         if not may_touch:
             eta = NEVER
         mates = [

@@ -29,14 +29,17 @@ from dataclasses import dataclass
 from cf_lang.ontology import FIELD, AbsolutePositioning, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
+from . import reach
 from .roles import Role, home_position, role_of
 
 FIELD_HALF_LENGTH = FIELD.half_length
 GOAL = (FIELD_HALF_LENGTH, 0.0)
 OWN_GOAL = (-FIELD_HALF_LENGTH, 0.0)
 KICKABLE = 1.0
-SHOOT_RANGE = 22.0
-PLAYER_SPEED = 0.8  # m per cycle, for time-to-ball estimates
+SHOOT_RANGE = 22.0  # at a set piece, shoot from within this distance
+SHOT_RANGE = 30.0  # in play, consider shots from within this distance
+SHOT_SPEED = 2.4  # m/cycle a shot is assumed to leave the foot with
+SAFE_MARGIN = 2  # cycles: our receiver must be this much sooner at the ball than any opponent
 CLAIM_MARGIN = 2  # cycles: someone must be this much faster to take the ball from the current claimer
 OUR_SET_PIECES = frozenset(
     {
@@ -77,8 +80,17 @@ def _point(x: float, y: float) -> AbsolutePositioning:
     return AbsolutePositioning(x=max(-60.0, min(60.0, x)), y=max(-40.0, min(40.0, y)))
 
 
-def cycles_to_ball(me: tuple[float, float], ball: tuple[float, float]) -> int:
-    return int(max(0.0, _dist(me, ball) - KICKABLE) / PLAYER_SPEED)
+def cycles_to_ball(me: tuple[float, float], ball: tuple[float, float], velocity=None) -> int:
+    """Cycles until I can have the ball, rolling as it does (``velocity``: the ontology's, metres per second)."""
+    v = (velocity.vx / reach.CYCLES_PER_SECOND, velocity.vy / reach.CYCLES_PER_SECOND) if velocity else (0.0, 0.0)
+    return reach.cycles_to_ball(me, ball, v)
+
+
+def state_eta(state: WorldState) -> int | None:
+    """My cycles to the ball in ``state`` (None: I or the ball are not known)."""
+    if not (state.ball and state.ball.positioning and state.me and state.me.positioning):
+        return None
+    return cycles_to_ball(_xy(state.me.positioning), _xy(state.ball.positioning), state.ball.velocity)
 
 
 def choose_interceptor(my_number: int, my_eta: int, claims: dict[int, int]) -> bool:
@@ -119,67 +131,14 @@ def opponent_on_ball(state: WorldState, ball: tuple[float, float]) -> bool:
     )
 
 
-def open_mates(state: WorldState) -> list[tuple[Player, float]]:
-    """Team-mates with their openness (distance to the nearest opponent), best first."""
-    opponents = [_xy(p.positioning) for p in state.players if p.which_team is Team.OPP and p.positioning]
-    out = []
-    for p in state.players:
-        if p.which_team is not Team.OUR or p.player_number is None or p.positioning is None:
-            continue
-        here = _xy(p.positioning)
-        openness = min((_dist(here, o) for o in opponents), default=30.0)
-        out.append((p, openness))
-    return sorted(out, key=lambda item: -item[1])
-
-
-def line_is_free(state: WorldState, start: tuple[float, float], end: tuple[float, float], width: float = 2.0) -> bool:
-    """No opponent within ``width`` of the segment start-end."""
-    sx, sy = start
-    ex, ey = end
-    length = math.hypot(ex - sx, ey - sy) or 1e-9
-    for p in state.players:
-        if p.which_team is not Team.OPP or p.positioning is None:
-            continue
-        px, py = p.positioning.x, p.positioning.y
-        t = max(0.0, min(1.0, ((px - sx) * (ex - sx) + (py - sy) * (ey - sy)) / length**2))
-        if math.hypot(sx + t * (ex - sx) - px, sy + t * (ey - sy) - py) < width:
-            return False
-    return True
-
-
-def choose_pass(state: WorldState, me: tuple[float, float]) -> Player | None:
-    """The best open team-mate clearly ahead of me with a free passing line."""
-    best, best_score = None, -1e9
-    for mate, openness in open_mates(state):
-        here = _xy(mate.positioning)
-        d = _dist(me, here)
-        if here[0] < me[0] + 2.0 or not 5.0 <= d <= 35.0 or openness < 3.0:
-            continue
-        if not line_is_free(state, me, here):
-            continue
-        score = here[0] * 0.5 + openness - 0.2 * d
-        if score > best_score:
-            best, best_score = mate, score
-    return best
-
-
-def choose_safe_pass(state: WorldState, me: tuple[float, float]) -> Player | None:
-    """The most open team-mate 5-30 m away with a free passing line, ahead or not."""
-    for mate, openness in open_mates(state):
-        here = _xy(mate.positioning)
-        if 5.0 <= _dist(me, here) <= 30.0 and openness >= 2.0 and line_is_free(state, me, here):
-            return mate
-    return None
-
-
 def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
-    """Our set piece: one touch only, so pass, or kick long into the opponents' half."""
-    if _dist(me, GOAL) <= SHOOT_RANGE:
+    """Our set piece: one touch only, so shoot, pass (backwards if need be), or kick long into their half."""
+    ball = _xy(state.ball.positioning) if state.ball and state.ball.positioning else me
+    if _dist(ball, GOAL) <= SHOOT_RANGE:
         return Decision("shoot", act.Shoot(target=_point(FIELD_HALF_LENGTH, 0.0), power=100.0), "set piece near goal")
-    mate = choose_pass(state, me) or choose_safe_pass(state, me)
-    if mate is not None:
-        to = Player(player_number=mate.player_number, which_team=Team.OUR)
-        return Decision("pass", act.Pass(to=to), f"set piece to team-mate {mate.player_number}")
+    choice = best_pass(state, ball)
+    if choice is not None:
+        return _pass(choice, "set piece")
     target = _point(min(FIELD_HALF_LENGTH - 10.0, me[0] + 35.0), me[1] * 0.5)
     return Decision("pass", act.Pass(target=target, power=100.0), "set piece: kick long")
 
@@ -194,18 +153,24 @@ class SetPieceTaker:
 
     def __init__(self) -> None:
         self.took_at: int | None = None
+        self.spot: tuple[float, float] | None = None  # where the ball lay when the taker chose his kick
+        self.mode: PlayMode | None = None  # the set piece he took
 
     def may_touch(self, state: WorldState) -> bool:
         if self.took_at is None:
             return True
         mode = play_mode(state)
-        if mode in OUR_SET_PIECES:
-            return True  # not kicked yet (the ball is still in place)
         ball = _xy(state.ball.positioning) if state.ball and state.ball.positioning else None
+        if mode is self.mode:
+            if ball is None or self.spot is None or _dist(ball, self.spot) < TOUCHED:
+                return True  # not kicked yet
+            # Kicked, and the mode lags behind (a goal kick stays one until the ball leaves the area).
+        elif mode is not PlayMode.PLAY_ON:
+            self.took_at = None  # another stoppage: a new set piece
         someone_else = ball is not None and any(
             p.positioning is not None and _dist(_xy(p.positioning), ball) <= TOUCHED for p in state.players
         )
-        if mode is not PlayMode.PLAY_ON or someone_else or state.time - self.took_at > TAKER_MEMORY:
+        if someone_else or (self.took_at is not None and state.time - self.took_at > TAKER_MEMORY):
             self.took_at = None
         return self.took_at is None
 
@@ -213,28 +178,123 @@ class SetPieceTaker:
         mode = play_mode(state)
         if mode in OUR_SET_PIECES and decision.method in KICKING:
             self.took_at = state.time
+            self.spot = _xy(state.ball.positioning) if state.ball and state.ball.positioning else None
+            self.mode = mode
+
+
+def _sides(state: WorldState) -> tuple[list[tuple[int, tuple[float, float]]], list[tuple[tuple[float, float], bool]]]:
+    """Team-mates (number, position) other than me, and opponents (position, goalkeeper)."""
+    mates, opponents = [], []
+    me = state.me.player_number if state.me else None
+    for p in state.players:
+        if p.positioning is None:
+            continue
+        if p.which_team is Team.OUR and p.player_number not in (None, me):
+            mates.append((p.player_number, _xy(p.positioning)))
+        elif p.which_team is Team.OPP:
+            opponents.append((_xy(p.positioning), bool(p.is_goalie)))
+    return mates, opponents
+
+
+def best_shot(state: WorldState, ball: tuple[float, float]) -> tuple[float, float] | None:
+    """The point in the goal a shot reaches before any opponent can stop it (the widest margin), if any."""
+    if _dist(ball, GOAL) > SHOT_RANGE:
+        return None
+    _, opponents = _sides(state)
+    best, best_margin = None, 0
+    half_goal = FIELD.goal_width / 2 - 0.8
+    for y in (-half_goal, -half_goal / 2, 0.0, half_goal / 2, half_goal):
+        target = (FIELD_HALF_LENGTH + 1.0, y)
+        path = reach.kicked_path(ball, target, SHOT_SPEED)
+        arrive = next((n for n, (x, _) in enumerate(path, start=1) if x >= FIELD_HALF_LENGTH), None)
+        if arrive is None:
+            continue
+        stopped = reach.first_cycles(path[:arrive], opponents)
+        margin = reach.HORIZON if stopped is None else stopped - arrive
+        if margin > best_margin:
+            best, best_margin = target, margin
+    return best
+
+
+@dataclass(frozen=True)
+class PassChoice:
+    number: int
+    target: tuple[float, float] | None  # None: to the team-mate's feet
+    gain: float  # metres up the field from the ball to where it is received
+
+
+def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1e9) -> PassChoice | None:
+    """The best pass a team-mate receives SAFE_MARGIN cycles before any opponent could, gaining ``min_gain``.
+
+    Targets are team-mates' feet and points ahead of them (through balls); the score is how far
+    up the field the ball is received, plus a little for time to spare.
+    """
+    mates, opponents = _sides(state)
+    best, best_score = None, -1e9
+    for number, here in mates:
+        leads = (0.0, 5.0, 10.0) if here[0] > ball[0] - 5.0 else (0.0,)
+        for lead in leads:
+            target = (min(FIELD_HALF_LENGTH - 3.0, here[0] + lead), here[1])
+            d = _dist(ball, target)
+            if not 4.0 <= d <= 40.0:
+                continue
+            path = reach.kicked_path(ball, target, reach.pass_speed(d))
+            ours = reach.first_cycles(path, [(pos, False) for n, pos in mates])
+            if ours is None:
+                continue
+            theirs = reach.first_cycles(path, opponents)
+            spare = reach.HORIZON if theirs is None else theirs - ours
+            if spare < SAFE_MARGIN:
+                continue
+            received = path[ours - 1]
+            if received[0] - ball[0] < min_gain:
+                continue
+            score = received[0] + 0.5 * min(spare, 6) - 0.3 * abs(received[1]) * (received[0] > 30.0)
+            if score > best_score:
+                best, best_score = PassChoice(number, target if lead else None, received[0] - ball[0]), score
+    return best
+
+
+def space_ahead(state: WorldState, me: tuple[float, float], towards: tuple[float, float]) -> bool:
+    """No opponent within 2.5 m, nor within 6 m and 60 degrees of the way towards ``towards``."""
+    heading = math.atan2(towards[1] - me[1], towards[0] - me[0])
+    for pos, _ in _sides(state)[1]:
+        d = _dist(me, pos)
+        off = abs(math.remainder(math.atan2(pos[1] - me[1], pos[0] - me[0]) - heading, math.tau))
+        if d < 2.5 or (d < 6.0 and off < math.radians(60.0)):
+            return False
+    return True
 
 
 def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
     mode = play_mode(state)
     if mode in OUR_SET_PIECES:
         return set_piece_kick(state, me)
-    goal_dist = _dist(me, GOAL)
-    if goal_dist <= SHOOT_RANGE:
-        # Aim at the post side the goalkeeper covers least.
-        keeper = next((p for p in state.players if p.which_team is Team.OPP and p.is_goalie and p.positioning), None)
-        aim_y = -5.0 if keeper is not None and keeper.positioning.y > 0 else 5.0
-        return Decision("shoot", act.Shoot(target=_point(FIELD_HALF_LENGTH, aim_y), power=100.0), "close to goal")
-    mate = choose_pass(state, me)
-    if mate is not None and (me[0] < 25.0 or not line_is_free(state, me, GOAL, 3.0)):
-        to = Player(player_number=mate.player_number, which_team=Team.OUR)
-        return Decision("pass", act.Pass(to=to), f"open team-mate {mate.player_number}")
-    if me[0] < CLEAR_LINE and not line_is_free(state, me, (me[0] + 10.0, me[1] * 0.7), 4.0):
-        # Pressed in our own third: no dribbling there; clear the ball long towards the wing.
+    ball = _xy(state.ball.positioning) if state.ball and state.ball.positioning else me
+    shot = best_shot(state, ball)
+    if shot is not None:
+        return Decision("shoot", act.Shoot(target=_point(*shot), power=100.0), "a free shot")
+    safe = best_pass(state, ball)
+    if safe is not None and safe.gain >= 10.0:
+        return _pass(safe, "forward pass")
+    goal_ward = _point(min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0), me[1] * 0.7)
+    if space_ahead(state, me, (goal_ward.x, goal_ward.y)):
+        return Decision("dribble", act.Dribble(target=goal_ward, speed=70.0), "space ahead: carry it")
+    if safe is not None:
+        return _pass(safe, "safe pass")
+    if me[0] < 0.0:
+        # Pressed in our half with nobody to pass to: clear the ball long towards the wing.
         wing = 25.0 if me[1] >= 0 else -25.0
         return Decision("pass", act.Pass(target=_point(me[0] + 40.0, wing), power=100.0), "clear the ball")
-    target = _point(min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0), me[1] * 0.7)
-    return Decision("dribble", act.Dribble(target=target, speed=70.0), "towards goal")
+    return Decision("dribble", act.Dribble(target=goal_ward, speed=70.0), "pressed: take it on")
+
+
+def _pass(choice: PassChoice, why: str) -> Decision:
+    if choice.target is None:
+        action = act.Pass(to=Player(player_number=choice.number, which_team=Team.OUR))
+    else:
+        action = act.Pass(target=_point(*choice.target))
+    return Decision("pass", action, f"{why} to team-mate {choice.number}")
 
 
 def goalkeeper(state: WorldState, me: tuple[float, float], ball: tuple[float, float] | None) -> Decision:
@@ -287,7 +347,7 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         return goalkeeper(state, me_pos, ball)
     if _dist(me_pos, ball) <= KICKABLE and may_touch:
         return with_ball(state, number, me_pos)
-    my_eta = cycles_to_ball(me_pos, ball)
+    my_eta = cycles_to_ball(me_pos, ball, state.ball.velocity)
     if not may_touch:
         my_eta = NEVER  # the ball is someone else's until they have touched it
     contested = opponent_on_ball(state, ball)
@@ -297,8 +357,19 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
     if may_touch and ball[0] < 0.0 and contested and second_fastest(number, my_eta, claims):
         return win_the_ball(ball, f"press the opponent on the ball ({my_eta} cycles)")
-    x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1])
+    x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1], offside_x=offside_line(state, ball))
     return _hold(me_pos, (x, y), f"{role.value}: hold position")
+
+
+def offside_line(state: WorldState, ball: tuple[float, float]) -> float | None:
+    """The x beyond which our attackers are offside: the second-last opponent's, or the ball's if further.
+
+    None while fewer than two opponents are known (the line cannot be told).
+    """
+    xs = sorted((p.positioning.x for p in state.players if p.which_team is Team.OPP and p.positioning), reverse=True)
+    if len(xs) < 2:
+        return None
+    return max(xs[1], ball[0], 0.0)
 
 
 def _hold(me: tuple[float, float], spot: tuple[float, float], why: str) -> Decision:

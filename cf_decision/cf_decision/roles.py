@@ -35,13 +35,21 @@ def role_of(number: int, team_size: int = 11) -> Role:
     return _FORMATION[_slot(number, team_size)][0]
 
 
-def home_position(number: int, team_size: int = 11, *, ball_x: float = 0.0, ball_y: float = 0.0) -> tuple[float, float]:
-    """Formation position, pulled towards the ball: the block moves up and down the field with it."""
+def home_position(
+    number: int, team_size: int = 11, *, ball_x: float = 0.0, ball_y: float = 0.0, offside_x: float | None = None
+) -> tuple[float, float]:
+    """Formation position, pulled towards the ball: the block moves up and down the field with it.
+
+    Forwards never drop deeper than just behind the halfway line (an outlet when we win the ball)
+    and stay a metre onside of ``offside_x`` (the opponents' offside line), as midfielders do.
+    """
     role, x, y = _FORMATION[_slot(number, team_size)]
     if role is Role.GOALKEEPER:
         return (x, 0.0)
     shift = 0.55 * ball_x
-    limit = {Role.DEFENDER: (-45.0, 20.0), Role.MIDFIELDER: (-35.0, 35.0), Role.FORWARD: (-15.0, 45.0)}[role]
+    limit = {Role.DEFENDER: (-45.0, 20.0), Role.MIDFIELDER: (-35.0, 35.0), Role.FORWARD: (-5.0, 45.0)}[role]
     hx = max(limit[0], min(limit[1], x + shift))
+    if offside_x is not None and role is not Role.DEFENDER:
+        hx = min(hx, max(0.0, offside_x - 1.0))
     hy = y + 0.25 * ball_y
     return (hx, max(-30.0, min(30.0, hy)))

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from cf_decision.policy import NEVER, SetPieceTaker, choose_interceptor, choose_pass, decide, line_is_free
+from cf_decision.policy import NEVER, SetPieceTaker, best_pass, best_shot, choose_interceptor, decide, offside_line
+from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, kicked_path
 from cf_decision.roles import Role, home_position, role_of
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
@@ -45,24 +46,56 @@ def test_fastest_player_goes_for_the_ball_and_ties_go_to_the_lower_number():
     assert choose_interceptor(4, 10, {})
 
 
-def test_shoot_when_close():
-    d = decide(state((40.0, 3.0), ball=(40.5, 3.0), players=[opp(1, 51.0, 2.0, goalie=True)]), 9, 11, {})
-    assert d.method == "shoot" and d.action.target.y == -5.0  # away from the keeper's side
+def test_a_rolling_ball_is_met_where_it_will_be():
+    assert cycles_to_ball((0.0, 0.0), (0.5, 0.0)) == 0
+    still = cycles_to_ball((0.0, 0.0), (10.0, 0.0))
+    coming = cycles_to_ball((0.0, 0.0), (10.0, 0.0), (-1.5, 0.0))
+    going = cycles_to_ball((0.0, 0.0), (10.0, 0.0), (1.5, 0.0))
+    assert coming < still < going
+    path = ball_path((0.0, 0.0), (2.0, 0.0), 3)
+    assert path[0] == (2.0, 0.0) and abs(path[2][0] - (2.0 + 1.88 + 1.7672)) < 1e-9
+    assert cycles_to_path((30.0, 40.0), kicked_path((0.0, 0.0), (20.0, 0.0), 1.5)) is None  # too far to get there
 
 
-def test_pass_to_an_open_mate_ahead_rather_than_dribble():
-    players = [mate(10, 15.0, 5.0), mate(11, -5.0, -10.0), opp(4, 2.0, -20.0)]
+def test_shoot_when_the_ball_beats_the_keeper():
+    keeper = opp(1, 51.0, 4.0, goalie=True)
+    d = decide(state((40.0, 3.0), ball=(40.5, 3.0), players=[keeper]), 9, 11, {})
+    assert d.method == "shoot" and d.action.target.y < 0  # away from the keeper's side
+    assert best_shot(state((0.0, 0.0), players=[keeper]), (10.0, 0.0)) is None  # out of range
+    wall = [keeper] + [opp(n, 47.0, y) for n, y in zip(range(2, 9), (-6, -4, -2, 0, 2, 4, 6), strict=True)]
+    assert best_shot(state((40.0, 0.0), players=wall), (40.5, 0.0)) is None  # every line blocked
+
+
+def test_pass_forward_to_a_team_mate_who_gets_there_first():
+    players = [mate(10, 15.0, 5.0), mate(11, -5.0, -10.0), opp(4, 2.0, -20.0), opp(5, 1.0, 3.0)]
     d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
-    assert d.method == "pass" and d.action.to.player_number == 10
+    assert d.method == "pass" and (d.action.to or d.action.target) is not None
+    choice = best_pass(state((0.0, 0.0), players=players), (0.5, 0.0))
+    assert choice.number == 10 and choice.gain > 10.0
 
 
-def test_no_pass_through_an_opponent():
-    players = [mate(10, 20.0, 0.0), opp(4, 10.0, 0.3)]
-    assert not line_is_free(state((0.0, 0.0), players=players), (0.0, 0.0), (20.0, 0.0))
-    assert line_is_free(state((0.0, 0.0), players=players), (0.0, 0.0), (0.0, 20.0))
-    assert choose_pass(state((0.0, 0.0), players=players), (0.0, 0.0)) is None
+def test_no_pass_an_opponent_reaches_first():
+    players = [mate(10, 20.0, 0.0), opp(4, 10.0, 0.3), opp(5, 3.0, 3.0)]
+    assert best_pass(state((0.0, 0.0), players=players), (0.5, 0.0)) is None
     d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
-    assert d.method == "dribble"
+    assert d.method == "dribble"  # nobody to pass to in their half: take it on
+    free = [mate(10, 20.0, 0.0), opp(4, 10.0, 12.0)]
+    assert best_pass(state((0.0, 0.0), players=free), (0.5, 0.0)).number == 10
+
+
+def test_with_space_ahead_carry_the_ball():
+    players = [mate(10, 8.0, 0.0), opp(4, 25.0, 0.0)]
+    d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
+    assert d.method == "dribble" and "space" in d.why
+
+
+def test_forwards_stay_onside_and_up_the_field():
+    players = [opp(1, 50.0, 0.0, goalie=True), opp(2, 20.0, 5.0), opp(3, 30.0, -5.0)]
+    assert offside_line(state((0.0, 0.0), players=players), (-30.0, 0.0)) == 30.0  # second-last
+    assert offside_line(state((0.0, 0.0), players=players[:1]), (-30.0, 0.0)) is None
+    assert home_position(10, ball_x=-40.0)[0] >= -5.0  # an outlet when we win the ball
+    assert home_position(10, ball_x=40.0, offside_x=20.0)[0] == 19.0
+    assert home_position(3, ball_x=40.0, offside_x=-20.0) == home_position(3, ball_x=40.0)  # not defenders
 
 
 def test_intercept_or_hold_position():
@@ -127,5 +160,5 @@ def test_in_our_half_the_second_fastest_presses_an_opponent_on_the_ball():
     assert hold.method not in ("intercept", "pass")  # third fastest: holds
     loose = decide(state((-15.0, 5.0), ball=(-20.0, 0.0)), 6, 11, {4: 3, 6: 7})
     assert loose.method != "intercept"  # nobody on the ball: one goes
-    ahead = decide(state((25.0, 5.0), ball=(20.0, 0.0), players=[opp(3, 20.5, 0.0)]), 10, 11, {10: 4, 9: 8})
+    ahead = decide(state((25.0, 5.0), ball=(20.0, 0.0), players=[opp(3, 20.5, 0.0)]), 10, 11, {10: 4, 9: 12})
     assert ahead.method == "dribble" and "win it" in ahead.why  # in their half: win it and go

@@ -48,11 +48,43 @@ def _go(world: World, me: SimPlayer, x: float, y: float, power: float) -> Comman
     return ("dash", power)
 
 
-def kick_power_for(world: World, me: SimPlayer, dist: float) -> float:
-    """Power that makes the ball roll about ``dist`` metres (the ball decays by 0.94 per cycle)."""
-    speed = dist * (1 - world.params.ball_decay)
-    rate = world.params.kick_power_rate * 0.85
-    return max(10.0, min(100.0, speed / rate))
+PASS_ARRIVAL_SPEED = 1.0  # m/cycle a pass still has at its target: a slow pass is a pass intercepted
+
+
+def kick_rate(world: World, me: SimPlayer) -> float:
+    """The ball's acceleration per unit of kick power with the ball where it is now (rcssserver's formula)."""
+    prm, b = world.params, world.ball
+    dir_diff = abs(norm_deg(direction_deg(me.x, me.y, b.x, b.y) - me.body))
+    gap = max(0.0, distance(me.x, me.y, b.x, b.y) - prm.player_size - prm.ball_size)
+    return prm.kick_power_rate * max(0.1, 1.0 - 0.25 * dir_diff / 180.0 - 0.25 * gap / prm.kickable_margin)
+
+
+def pass_speed(world: World, dist: float) -> float:
+    """The speed that carries the ball ``dist`` metres and still arrives at PASS_ARRIVAL_SPEED."""
+    return PASS_ARRIVAL_SPEED + dist * (1.0 - world.params.ball_decay)
+
+
+def kick_towards(world: World, me: SimPlayer, x: float, y: float, speed: float | None) -> Command:
+    """The kick that sends the ball towards (x, y) at ``speed`` m/cycle (None: as fast as this touch can).
+
+    A kick adds to the ball's velocity, so a rolling ball's motion is taken out: the kick aims the
+    sum, not the push. When the ball rolls too fast across the line to be turned onto it, the kick
+    stops the ball instead (the next touch can then aim).
+    """
+    b, rate = world.ball, kick_rate(world, me)
+    most = min(100.0 * rate, world.params.ball_accel_max)
+    angle = math.radians(direction_deg(b.x, b.y, x, y))
+    ux, uy = math.cos(angle), math.sin(angle)
+    along = ux * b.vx + uy * b.vy
+    room = along * along - (b.vx * b.vx + b.vy * b.vy) + most * most
+    if room < 0.0:
+        ax, ay = -b.vx, -b.vy
+    else:
+        reach = min(along + math.sqrt(room), world.params.ball_speed_max)
+        want = reach if speed is None else max(0.0, min(speed, reach))
+        ax, ay = want * ux - b.vx, want * uy - b.vy
+    direction = norm_deg(math.degrees(math.atan2(ay, ax)) - me.body)
+    return ("kick", max(0.0, min(100.0, math.hypot(ax, ay) / rate)), direction)
 
 
 class Skill:
@@ -158,10 +190,12 @@ class KickTo(Skill):
             if not self.approach:
                 return Step([], "failed", "the ball is not kickable")
             return _chase_ball(world, me)
-        power = self.power if self.power is not None else kick_power_for(world, me, distance(b.x, b.y, self.x, self.y))
-        direction = norm_deg(direction_deg(b.x, b.y, self.x, self.y) - me.body)
+        if self.power is None:  # a pass: fast enough to arrive with some pace left
+            speed = pass_speed(world, distance(b.x, b.y, self.x, self.y))
+        else:  # a share of the fastest one kick gives a still ball (100: as fast as this touch can)
+            speed = None if self.power >= 100.0 else self.power / 100.0 * world.params.ball_accel_max
         self.kicked = True
-        return Step([("kick", power, direction)])
+        return Step([kick_towards(world, me, self.x, self.y, speed)])
 
 
 class Dribble(Skill):
@@ -178,8 +212,8 @@ class Dribble(Skill):
         if distance(b.x, b.y, self.x, self.y) <= 1.5:
             return Step([], "done")
         if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
-            direction = norm_deg(direction_deg(b.x, b.y, self.x, self.y) - me.body)
-            return Step([("kick", 15.0 + 0.25 * self.speed, direction)])
+            push = (0.15 + 0.0025 * self.speed) * world.params.ball_accel_max  # speed 70: 0.9 m/cycle
+            return Step([kick_towards(world, me, self.x, self.y, push)])
         return _chase_ball(world, me)
 
 

@@ -1,0 +1,75 @@
+"""Who reaches a rolling ball first (ROS-free): the model behind interceptions, passes and shots.
+
+The ball keeps BALL_DECAY of its speed every cycle; a player needs TURN_CYCLES to face it, then
+runs up to PLAYER_SPEED a cycle (START_LOSS metres behind that pace from a standstill), and has the
+ball once within REACH of it (a goalkeeper catches within CATCH_REACH). Both back-ends follow rcssserver's physics, so one model serves both. Positions are
+in the player's own frame, speeds in metres per cycle.
+"""
+
+from __future__ import annotations
+
+import math
+
+Point = tuple[float, float]
+
+BALL_DECAY = 0.94
+BALL_SPEED_MAX = 2.7  # the fastest one kick makes a still ball
+PASS_ARRIVAL_SPEED = 1.0  # the action's pass arrives with this much pace left (skills.pass_speed)
+PLAYER_SPEED = 1.0  # rcssserver: dash accel 0.6 a cycle, speed decays by 0.4: tops out at 1.0
+START_LOSS = 0.7  # metres lost to accelerating: 0.6, 1.44, 2.38, 3.35 after 1, 2, 3, 4 dashes
+TURN_CYCLES = 1
+REACH = 1.0
+CATCH_REACH = 1.5  # rcssserver's catchable area is 1.2 m by 1 m in the catch direction
+HORIZON = 40  # cycles looked ahead: a ball still rolling after that is anybody's
+CYCLES_PER_SECOND = 10.0
+
+
+def pass_speed(dist: float) -> float:
+    """The speed a pass leaves the foot with to cover ``dist`` metres (as the action kicks it)."""
+    return min(BALL_SPEED_MAX, PASS_ARRIVAL_SPEED + dist * (1.0 - BALL_DECAY))
+
+
+def ball_path(start: Point, velocity: Point, cycles: int = HORIZON) -> list[Point]:
+    """Where the ball is after 1, 2, ... ``cycles`` cycles."""
+    out, (x, y), (vx, vy) = [], start, velocity
+    for _ in range(cycles):
+        x, y = x + vx, y + vy
+        vx, vy = vx * BALL_DECAY, vy * BALL_DECAY
+        out.append((x, y))
+    return out
+
+
+def kicked_path(start: Point, target: Point, speed: float) -> list[Point]:
+    """The path of a ball kicked from ``start`` towards ``target`` at ``speed``."""
+    angle = math.atan2(target[1] - start[1], target[0] - start[0])
+    return ball_path(start, (speed * math.cos(angle), speed * math.sin(angle)))
+
+
+def cycles_to_path(player: Point, path: list[Point], reach: float = REACH) -> int | None:
+    """The first cycle in which ``player`` can have a ball on ``path``; None: not within the horizon."""
+    for n, (bx, by) in enumerate(path, start=1):
+        run = max(0.0, PLAYER_SPEED * (n - TURN_CYCLES) - START_LOSS)
+        if math.hypot(bx - player[0], by - player[1]) - reach <= run:
+            return n
+    return None
+
+
+def cycles_to_ball(me: Point, ball: Point, velocity: Point = (0.0, 0.0)) -> int:
+    """How soon I can have the ball, rolling as it does (velocity in metres per cycle)."""
+    if math.hypot(me[0] - ball[0], me[1] - ball[1]) <= REACH:
+        return 0
+    n = cycles_to_path(me, ball_path(ball, velocity))
+    if n is not None:
+        return n
+    stop = ball_path(ball, velocity)[-1]  # it stops about there
+    return HORIZON + int(math.hypot(me[0] - stop[0], me[1] - stop[1]) / PLAYER_SPEED)
+
+
+def first_cycles(path: list[Point], players: list[tuple[Point, bool]]) -> int | None:
+    """The earliest cycle any of ``players`` ((position, goalkeeper)) has a ball on ``path``."""
+    best = None
+    for pos, goalie in players:
+        n = cycles_to_path(pos, path, CATCH_REACH if goalie else REACH)
+        if n is not None and (best is None or n < best):
+            best = n
+    return best
