@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass
 
 from cf_lang.ontology import actions as act
+from cf_sim_backend.embedded.physics import tackle_failure
 from cf_sim_backend.perception import to_own_frame
 from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, move_allowed, norm_deg
 
@@ -156,6 +157,21 @@ class TurnTo(Skill):
         return Step([("turn", _turn_moment(world, me, angle))])
 
 
+TACKLE_SURE = 0.2  # the most failure chance worth a tackle (it holds the tackler for tackle_cycles)
+
+
+def _tackle_for(world: World, me: SimPlayer, x: float, y: float) -> Step | None:
+    """A tackle towards (x, y) if an opponent has the ball at his feet and it would very likely hit."""
+    b = world.ball
+    contested = any(
+        p.side is not me.side and distance(p.x, p.y, b.x, b.y) <= world.params.kickable_distance
+        for p in world.players.values()
+    )
+    if not contested or tackle_failure(world, me) > TACKLE_SURE:
+        return None
+    return Step([("tackle", norm_deg(direction_deg(b.x, b.y, x, y) - me.body))])
+
+
 def _chase_ball(world: World, me: SimPlayer) -> Step:
     """Run to where the ball will be when we could get there (a few cycles ahead)."""
     b = world.ball
@@ -189,7 +205,7 @@ class KickTo(Skill):
         if distance(me.x, me.y, b.x, b.y) > world.params.kickable_distance:
             if not self.approach:
                 return Step([], "failed", "the ball is not kickable")
-            return _chase_ball(world, me)
+            return _tackle_for(world, me, self.x, self.y) or _chase_ball(world, me)
         if self.power is None:  # a pass: fast enough to arrive with some pace left
             speed = pass_speed(world, distance(b.x, b.y, self.x, self.y))
         else:  # a share of the fastest one kick gives a still ball (100: as fast as this touch can)
@@ -214,7 +230,7 @@ class Dribble(Skill):
         if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
             push = (0.15 + 0.0025 * self.speed) * world.params.ball_accel_max  # speed 70: 0.9 m/cycle
             return Step([kick_towards(world, me, self.x, self.y, push)])
-        return _chase_ball(world, me)
+        return _tackle_for(world, me, self.x, self.y) or _chase_ball(world, me)
 
 
 def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> Skill:
@@ -232,7 +248,7 @@ def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> S
     if isinstance(action, act.TurnHead):
         return Once(("turn_neck", math.degrees(action.angle) - me.neck), "turnHead")
     if isinstance(action, act.Tackle):
-        return Once(("tackle", action.power), "tackle")
+        return Once(("tackle", math.degrees(action.direction)), "tackle")
     if isinstance(action, act.Catch):
         if not me.goalie:
             raise SkillError("only the goalkeeper can catch")

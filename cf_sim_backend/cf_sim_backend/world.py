@@ -56,6 +56,9 @@ class Params:
     stamina_inc_max: float = 45.0
     catchable_area: float = 1.3
     tackle_dist: float = 2.0
+    tackle_width: float = 1.25
+    tackle_exponent: float = 6.0
+    tackle_cycles: int = 10  # a tackler can do nothing else this long, won or not
     kick_off_clearance: float = FIELD.centre_circle_radius
     half_cycles: int = 3000
     halves: int = 2
@@ -89,6 +92,7 @@ class SimPlayer:
     stamina: float = 8000.0
     goalie: bool = False
     kicks: int = 0  # kicks that reached the ball
+    frozen: int = 0  # cycles left in which a tackle keeps the player from any body command
 
     @property
     def key(self) -> tuple[Side, int]:

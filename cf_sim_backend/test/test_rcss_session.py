@@ -238,6 +238,7 @@ def test_commands_are_mirrored_into_the_servers_frame():
     assert rcss_command(("dash", 80.0, 90.0)) == "(dash 80 -90)"
     assert rcss_command(("kick", 55.556, -10.0)) == "(kick 55.56 10)"
     assert rcss_command(("move", -10.0, 5.0)) == "(move -10 -5)"
+    assert rcss_command(("tackle", 30.0)) == "(tackle -30)"  # protocol 12+: a direction, not a power
     assert rcss_command(("turn_neck", -45.0)) == "(turn_neck 45)"
     assert rcss_command(("say", 'hi "there"&you')) == '(say "hi thereyo")'
     assert rcss_command(("say",)) is None
@@ -490,3 +491,21 @@ def test_turns_the_server_never_executed_do_not_throw_the_dead_reckoned_pose_off
     assert len(ours) > 100
     assert ours[-1] < max(1.0, 1.5 * recorded[-1]), (ours[-5:], recorded[-5:])
     assert statistics.mean(ours) < 1.5 * statistics.mean(recorded) + 0.05
+
+
+def test_while_our_tackle_holds_us_nothing_is_sent():
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 play_on)\0")
+    session.receive(b"(sense_body 40 (kick 2) (dash 7) (turn 0) (move 1) (tackle (expires 0) (count 0)))")
+    session.belief.ball = Track(1.0, 0.0, 0.0, 0.0, 0.1, 40)
+    world = session.belief.world()
+    me = world.player(Side.LEFT, 3)
+    session.start(skill_for("tackle", act.Tackle(power=100.0, direction=0.5), Side.LEFT, world, me))
+    assert session.act().commands == ["(tackle -28.65)"]
+    session.receive(b"(sense_body 41 (kick 2) (dash 7) (turn 0) (move 1) (tackle (expires 9) (count 1)))")
+    assert session.belief.counters["tackle"] == 1 and session.belief.world().player(Side.LEFT, 3).frozen == 9
+    session.start(MoveTo(-20.0, 10.0, 80.0))
+    assert session.act().commands == []  # the server would ignore a dash now
+    session.receive(b"(sense_body 50 (kick 2) (dash 7) (turn 0) (move 1) (tackle (expires 0) (count 1)))")
+    assert session.act().commands  # free again
+    assert session.stats.get("unexecuted_dash", 0) == 0

@@ -8,6 +8,7 @@ import pytest
 from test_sim_core import QUIET, sim_with
 
 from cf_lang import parse_expr
+from cf_sim_backend.embedded.physics import tackle_failure
 from cf_sim_backend.skills import SkillError, skill_for
 from cf_sim_backend.world import Params, Side, distance
 
@@ -100,3 +101,39 @@ def test_impossible_actions_are_refused_with_a_reason(text, words):
     sim.world.ball.x = 20.0
     with pytest.raises(SkillError, match=words):
         skill_for("", parse_expr(text).action, Side.LEFT, sim.world, sim.world.player(Side.LEFT, 2))
+
+
+def test_a_tackle_hits_by_rcssservers_odds_and_holds_the_tackler():
+    sim = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0), (Side.RIGHT, 3, 2.0, 0.0, 180.0))
+    w = sim.world
+    w.ball.x, w.ball.y = 1.2, 0.0  # in front of both; the opponent has it at his feet
+    assert tackle_failure(w, w.player(Side.LEFT, 2)) == pytest.approx((1.2 / 2.0) ** 6)
+    w.ball.x = -1.0
+    assert tackle_failure(w, w.player(Side.LEFT, 2)) == 1.0  # behind the body: no tackle
+    w.ball.x = 1.2
+    me = w.player(Side.LEFT, 2)
+    # A pass request whose ball an opponent holds: the approach tackles towards the target.
+    skill = skill_for(
+        "pass", parse_expr(exec_("pass", ":target (AbsolutePositioning :x 0 :y 20)", 2)).action, Side.LEFT, w, me
+    )
+    step = skill.step(w, me)
+    assert step.commands[0][0] == "tackle" and step.commands[0][1] == pytest.approx(
+        math.degrees(math.atan2(20.0, -1.2))
+    )
+    sim.command(Side.LEFT, 2, *step.commands[0])
+    sim.step()
+    assert w.ball.vy > 1.0 and me.frozen == w.params.tackle_cycles - 1
+    sim.command(Side.LEFT, 2, "dash", 100.0)
+    sim.step()
+    assert abs(me.vx) < 0.05  # held: the dash did not count
+    far = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0), (Side.RIGHT, 3, 3.5, 0.0, 180.0))
+    far.world.ball.x = 1.9  # loose, or too far for a sure tackle: run for it instead
+    me = far.world.player(Side.LEFT, 2)
+    skill = skill_for(
+        "pass",
+        parse_expr(exec_("pass", ":target (AbsolutePositioning :x 0 :y 20)", 2)).action,
+        Side.LEFT,
+        far.world,
+        me,
+    )
+    assert skill.step(far.world, me).commands[0][0] != "tackle"

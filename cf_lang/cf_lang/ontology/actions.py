@@ -60,9 +60,10 @@ class Intercept(Concept):
 
 
 class Tackle(Concept):
-    """Try to take the ball from an opponent."""
+    """Try to take the ball from an opponent: it may fail, and the tackler stands still for a while after."""
 
     power: float = Power
+    direction: float = Field(default=0.0, ge=-math.pi, le=math.pi, description="where the ball goes, from the body")
 
 
 class Catch(Concept):

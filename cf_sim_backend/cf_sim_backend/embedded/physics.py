@@ -97,16 +97,35 @@ def catch(world: World, p: SimPlayer, direction: float) -> bool:
     return True
 
 
-def tackle(world: World, p: SimPlayer, power: float) -> bool:
-    """Push the ball away in the body direction if it is close in front."""
+def tackle_failure(world: World, p: SimPlayer) -> float:
+    """The chance a tackle misses the ball where it is now (rcssserver's; 1: out of the tackle area)."""
     prm = world.params
-    d = ball_distance(world, p)
-    ball_dir = direction_deg(p.x, p.y, world.ball.x, world.ball.y)
-    if d > prm.tackle_dist or abs(norm_deg(ball_dir - p.body)) > 60.0:
+    rel = math.radians(direction_deg(p.x, p.y, world.ball.x, world.ball.y) - p.body)
+    d = distance(p.x, p.y, world.ball.x, world.ball.y)
+    ahead, aside = d * math.cos(rel), d * math.sin(rel)
+    if ahead <= 0.0:
+        return 1.0  # behind the body: rcssserver's tackle_back_dist is 0
+    chance = (ahead / prm.tackle_dist) ** prm.tackle_exponent + (abs(aside) / prm.tackle_width) ** prm.tackle_exponent
+    return min(1.0, chance)
+
+
+def tackle(world: World, p: SimPlayer, direction: float, rng: random.Random) -> bool:
+    """Tackle towards ``direction`` (degrees from the body), as rcssserver 12+ does; return whether it hit.
+
+    It may miss (:func:`tackle_failure`); either way the player can do nothing else for
+    ``tackle_cycles``. A hit pushes the ball with up to 100 x kick_power_rate, less the further the
+    direction turns from the body and the ball lies off it.
+    """
+    prm = world.params
+    p.frozen = prm.tackle_cycles - 1  # the tackle's own cycle is the first
+    if rng.random() < tackle_failure(world, p):
         return False
-    speed = _clamp(power, 0.0, 100.0) * prm.kick_power_rate * 0.75
-    angle = math.radians(p.body)
-    world.ball.vx, world.ball.vy = speed * math.cos(angle), speed * math.sin(angle)
+    angle = norm_deg(_clamp(direction, -180.0, 180.0))
+    off = abs(norm_deg(direction_deg(p.x, p.y, world.ball.x, world.ball.y) - p.body))
+    power = 100.0 * (1.0 - abs(angle) / 180.0) * prm.kick_power_rate * (1.0 - 0.5 * off / 180.0)
+    heading = math.radians(p.body + angle)
+    b = world.ball
+    b.vx, b.vy = _cap(b.vx + power * math.cos(heading), b.vy + power * math.sin(heading), prm.ball_speed_max)
     p.kicks += 1
     return True
 

@@ -13,7 +13,7 @@ _ARITY = {
     "turn": (1, 1),
     "kick": (2, 2),
     "catch": (1, 1),
-    "tackle": (1, 1),
+    "tackle": (1, 1),  # the direction, degrees from the body (rcssserver 12+)
     "move": (2, 2),
     "turn_neck": (1, 1),
 }
@@ -113,6 +113,11 @@ class Simulator:
             physics.turn_neck(w, w.players[key], angle)
         keys = list(body)
         self.rng.shuffle(keys)  # no side gets to kick first by its number
+        for p in w.players.values():
+            if p.frozen > 0:  # a tackle's aftermath: no body command counts
+                p.frozen -= 1
+                body.pop(p.key, None)
+        keys = [key for key in keys if key in body]
         for key in keys:
             name, args = body[key]
             event = self._apply(w.players[key], name, args)
@@ -179,7 +184,7 @@ class Simulator:
             self._offside = {Side.LEFT: set(), Side.RIGHT: set()}
             referee.start_set_piece(w, "free_kick", p.side.other, p.x, p.y)
             return f"offside {p.side.value} {p.number}"
-        touched = physics.kick(w, p, *args) if name == "kick" else physics.tackle(w, p, args[0])
+        touched = physics.kick(w, p, *args) if name == "kick" else physics.tackle(w, p, args[0], self.rng)
         if not touched:
             return None
         w.last_touch = p.key

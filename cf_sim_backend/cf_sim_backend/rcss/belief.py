@@ -149,6 +149,7 @@ class Belief:
     anonymous: list[tuple[str | None, Track]] = field(default_factory=list)
     opponent: str | None = None
     counters: dict[str, int] = field(default_factory=dict)
+    tackle_expires: int = 0  # cycles our last tackle still holds us (sense_body)
     see_time: int = -1
     sense_time: int = -1
     errors: list[str] = field(default_factory=list)
@@ -255,6 +256,12 @@ class Belief:
         for name in ("kick", "dash", "turn", "turn_neck", "catch", "move", "change_view", "say"):
             if name in parts and isinstance(parts[name][0], (int, float)):
                 self.counters[name] = int(parts[name][0])
+        if "tackle" in parts:  # (tackle (expires N) (count N)): N cycles left in which a tackle holds us
+            fields = {str(f[0]): f[1] for f in parts["tackle"] if isinstance(f, list) and len(f) == 2}
+            if isinstance(fields.get("count"), (int, float)):
+                self.counters["tackle"] = int(fields["count"])
+            expires = fields.get("expires", 0)
+            self.tackle_expires = int(expires) if isinstance(expires, (int, float)) else 0
         # Dead reckoning: the body turned as commanded, if the server executed the turn (a command
         # that came late, on a loaded machine, runs a cycle later or never, and a replay runs none);
         # it moved by this cycle's speed before its decay.
@@ -427,7 +434,17 @@ class Belief:
         w = World(params=self.params(), time=self.time, mode=self.mode, score=dict(self.score), half=self.half)
         me = self.me
         w.players[(side, self.number)] = SimPlayer(
-            side, self.number, me.x, -me.y, me.vx, -me.vy, -me.body, -me.neck, me.stamina, self.goalie
+            side,
+            self.number,
+            me.x,
+            -me.y,
+            me.vx,
+            -me.vy,
+            -me.body,
+            -me.neck,
+            me.stamina,
+            self.goalie,
+            frozen=self.tackle_expires,
         )
         if self.ball is not None:
             w.ball = SimBall(self.ball.x, -self.ball.y, self.ball.vx, -self.ball.vy)

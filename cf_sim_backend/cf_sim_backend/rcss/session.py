@@ -17,7 +17,7 @@ from cf_sim_backend.rcss.belief import Belief
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse
 from cf_sim_backend.skills import Command, Skill
 
-_EXECUTED = ("kick", "dash", "turn", "move", "catch")  # sense_body counters of body commands
+_EXECUTED = ("kick", "dash", "turn", "move", "catch", "tackle")  # sense_body counters of body commands
 _BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "kick", "catch", "tackle"})
 _SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
 
@@ -37,8 +37,8 @@ def rcss_command(cmd: Command) -> str | None:
         return f"({name} {_n(-args[0])})"
     if name == "kick":
         return f"(kick {_n(args[0])} {_n(-args[1])})"
-    if name == "tackle":
-        return f"(tackle {_n(args[0])})"
+    if name == "tackle":  # protocol 12+: the direction the ball goes, from the body
+        return f"(tackle {_n(-args[0])})"
     if name == "move":  # own-half coordinates as for the left side: the server mirrors them for the right
         return f"(move {_n(args[0])} {_n(-args[1])})"
     if name == "say" and args:
@@ -148,6 +148,8 @@ class PlayerSession:
             return Acted([], "failed", "the ball is out of sight", skill.name, skill.cycles)
         world = b.world()
         me = world.player(b.side, b.number)
+        if me.frozen > 0:
+            return Acted()  # a tackle holds us: the server would ignore any body command
         step = self.skill.step(world, me)
         out, body_sent = [], False
         for cmd in step.commands:
