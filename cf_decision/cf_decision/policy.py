@@ -54,7 +54,10 @@ KICKING = frozenset({"shoot", "pass", "dribble", "kick"})
 TOUCHED = 1.5  # m: another player this close to the ball has (or may have) touched it
 TAKER_MEMORY = 100  # cycles after which a set piece's taker plays on as usual
 NEVER = 10**6  # cycles to the ball of a player who may not touch it
-CLEAR_LINE = -FIELD_HALF_LENGTH / 3  # behind it, a pressed player clears the ball instead of dribbling
+MARK_RADIUS = 15.0  # m from a defender's or midfielder's formation spot: opponents he may mark
+MARK_DISTANCE = 1.5  # m goal-side of the marked opponent
+TIRED = 0.45  # stamina share
+MARK_BALL_X = 15.0  # mark while their ball is short of this x (deeper in their half: keep the shape)
 
 
 @dataclass(frozen=True)
@@ -357,8 +360,67 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
     if may_touch and ball[0] < 0.0 and contested and second_fastest(number, my_eta, claims):
         return win_the_ball(ball, f"press the opponent on the ball ({my_eta} cycles)")
+    if role in (Role.DEFENDER, Role.MIDFIELDER) and ball[0] < MARK_BALL_X and their_ball(state, ball):
+        mark = marking(state, team_size, ball).get(number)
+        if mark is not None:
+            why = f"{role.value}: mark the opponent at {mark[0]:.0f} {mark[1]:.0f}"
+            return _hold(me_pos, goal_side(mark), why, 1.0, tired(state))
     x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1], offside_x=offside_line(state, ball))
-    return _hold(me_pos, (x, y), f"{role.value}: hold position")
+    return _hold(me_pos, (x, y), f"{role.value}: hold position", tired=tired(state))
+
+
+def tired(state: WorldState) -> bool:
+    """Below TIRED of its stamina a player walks to its spot: under rcssserver's 30 % it recovers slower for good."""
+    return state.me is not None and state.me.stamina is not None and state.me.stamina < TIRED
+
+
+def their_ball(state: WorldState, ball: tuple[float, float]) -> bool:
+    """An opponent is the player nearest the ball (or has it at his feet)."""
+    nearest_opp = min(
+        (_dist(_xy(p.positioning), ball) for p in state.players if p.which_team is Team.OPP and p.positioning),
+        default=None,
+    )
+    if nearest_opp is None:
+        return False
+    ours = [_dist(_xy(p.positioning), ball) for p in state.players if p.which_team is Team.OUR and p.positioning]
+    if state.me and state.me.positioning:
+        ours.append(_dist(_xy(state.me.positioning), ball))
+    return nearest_opp < 2.0 or nearest_opp < min(ours, default=1e9)
+
+
+def marking(state: WorldState, team_size: int, ball: tuple[float, float]) -> dict[int, tuple[float, float]]:
+    """Which opponent each defender and midfielder marks (number -> the opponent's position).
+
+    The pairs nearest each other go first (a player's formation spot to an opponent, within
+    MARK_RADIUS); the opponent on the ball is left to those who go for it. Every team-mate
+    computes the same from what he sees, so nobody needs to be told.
+    """
+    opponents = [
+        _xy(p.positioning)
+        for p in state.players
+        if p.which_team is Team.OPP and p.positioning and not p.is_goalie and _dist(_xy(p.positioning), ball) > 3.0
+    ]
+    pairs = []
+    for n in range(2, team_size + 1):
+        if role_of(n, team_size) not in (Role.DEFENDER, Role.MIDFIELDER):
+            continue
+        home = home_position(n, team_size, ball_x=ball[0], ball_y=ball[1])
+        pairs += [(_dist(home, o), n, i) for i, o in enumerate(opponents) if _dist(home, o) < MARK_RADIUS]
+    out, taken = {}, set()
+    for _, n, i in sorted(pairs):
+        if n not in out and i not in taken:
+            out[n] = opponents[i]
+            taken.add(i)
+    return out
+
+
+def goal_side(mark: tuple[float, float]) -> tuple[float, float]:
+    """Where to stand to mark an opponent: MARK_DISTANCE from him towards our goal."""
+    d = _dist(mark, OWN_GOAL) or 1.0
+    return (
+        mark[0] + (OWN_GOAL[0] - mark[0]) * MARK_DISTANCE / d,
+        mark[1] + (OWN_GOAL[1] - mark[1]) * MARK_DISTANCE / d,
+    )
 
 
 def offside_line(state: WorldState, ball: tuple[float, float]) -> float | None:
@@ -372,9 +434,14 @@ def offside_line(state: WorldState, ball: tuple[float, float]) -> float | None:
     return max(xs[1], ball[0], 0.0)
 
 
-def _hold(me: tuple[float, float], spot: tuple[float, float], why: str) -> Decision:
-    if _dist(me, spot) > 3.0:
-        return Decision("moveTo", act.MoveTo(target=_point(*spot), speed=70.0), why)
+def _hold(
+    me: tuple[float, float], spot: tuple[float, float], why: str, slack: float = 3.0, tired: bool = False
+) -> Decision:
+    """Go to ``spot`` (fast when far, unless ``tired``), or, within ``slack`` of it, watch the ball."""
+    d = _dist(me, spot)
+    if d > slack:
+        speed = 40.0 if tired else 100.0 if d > 8.0 else 70.0
+        return Decision("moveTo", act.MoveTo(target=_point(*spot), speed=speed), why)
     return Decision("turnToObject", act.TurnToObject(obj=_ball_model()), why + ", watch the ball")
 
 

@@ -2,7 +2,16 @@
 
 from __future__ import annotations
 
-from cf_decision.policy import NEVER, SetPieceTaker, best_pass, best_shot, choose_interceptor, decide, offside_line
+from cf_decision.policy import (
+    NEVER,
+    SetPieceTaker,
+    best_pass,
+    best_shot,
+    choose_interceptor,
+    decide,
+    marking,
+    offside_line,
+)
 from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, kicked_path
 from cf_decision.roles import Role, home_position, role_of
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
@@ -162,3 +171,23 @@ def test_in_our_half_the_second_fastest_presses_an_opponent_on_the_ball():
     assert loose.method != "intercept"  # nobody on the ball: one goes
     ahead = decide(state((25.0, 5.0), ball=(20.0, 0.0), players=[opp(3, 20.5, 0.0)]), 10, 11, {10: 4, 9: 12})
     assert ahead.method == "dribble" and "win it" in ahead.why  # in their half: win it and go
+
+
+def test_when_they_have_the_ball_defenders_and_midfielders_mark_goal_side():
+    holder, runner, far = opp(9, -20.0, 0.0), opp(10, -40.0, 6.0), opp(11, 30.0, 20.0)
+    players = [holder, runner, far, mate(4, -25.0, -10.0)]
+    st = state((-33.0, 4.0), ball=(-20.5, 0.0), players=players, number=3)
+    marks = marking(st, 11, (-20.5, 0.0))
+    assert marks.get(3) == (-40.0, 6.0)  # the nearest pair; the man on the ball is the pressers'
+    assert (30.0, 20.0) not in marks.values()  # too far from anyone's spot
+    d = decide(st, 3, 11, {4: 2, 3: 20, 7: 5})
+    assert d.method == "moveTo" and "mark" in d.why and d.action.target.x < -40.0  # between him and our goal
+    ours = state((-33.0, 4.0), ball=(-20.5, 0.0), players=[holder, runner, mate(7, -21.0, 0.5)], number=3)
+    assert "mark" not in decide(ours, 3, 11, {7: 0, 3: 20}).why  # our ball: keep the shape
+
+
+def test_a_tired_player_walks_to_its_spot():
+    st = state((-5.0, 20.0), ball=(30.0, 0.0), number=4)
+    fresh = decide(st, 4, 11, {9: 1})
+    tired = decide(st.model_copy(update={"me": st.me.model_copy(update={"stamina": 0.3})}), 4, 11, {9: 1})
+    assert fresh.action.speed == 100.0 and tired.action.speed < 50.0
