@@ -269,6 +269,21 @@ def space_ahead(state: WorldState, me: tuple[float, float], towards: tuple[float
     return True
 
 
+def dribble_room(state: WorldState, me: tuple[float, float]) -> tuple[float, float] | None:
+    """A point 10 m away, towards the goal or up to 60 degrees off it, with space on the way (the straightest).
+
+    In our own third only straight ahead: beating a man there risks a goal.
+    """
+    toward = math.atan2(GOAL[1] - me[1], GOAL[0] - me[0])
+    for off in (0.0,) if me[0] < -FIELD_HALF_LENGTH / 3 else (0.0, 30.0, -30.0, 60.0, -60.0):
+        heading = toward + math.radians(off if me[1] <= 0 else -off)  # try the middle of the field first
+        x = min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0 * math.cos(heading))
+        y = max(-FIELD.width / 2 + 3.0, min(FIELD.width / 2 - 3.0, me[1] + 10.0 * math.sin(heading)))
+        if _dist(me, (x, y)) > 4.0 and space_ahead(state, me, (x, y)):
+            return (x, y)
+    return None
+
+
 def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
     mode = play_mode(state)
     if mode in OUR_SET_PIECES:
@@ -281,8 +296,9 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     if safe is not None and safe.gain >= 10.0:
         return _pass(safe, "forward pass")
     goal_ward = _point(min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0), me[1] * 0.7)
-    if space_ahead(state, me, (goal_ward.x, goal_ward.y)):
-        return Decision("dribble", act.Dribble(target=goal_ward, speed=70.0), "space ahead: carry it")
+    space = dribble_room(state, me)
+    if space is not None:
+        return Decision("dribble", act.Dribble(target=_point(*space), speed=70.0), "space ahead: carry it")
     if safe is not None:
         return _pass(safe, "safe pass")
     if me[0] < 0.0:

@@ -191,3 +191,8 @@ def test_a_tired_player_walks_to_its_spot():
     fresh = decide(st, 4, 11, {9: 1})
     tired = decide(st.model_copy(update={"me": st.me.model_copy(update={"stamina": 0.3})}), 4, 11, {9: 1})
     assert fresh.action.speed == 100.0 and tired.action.speed < 50.0
+
+
+def test_with_a_man_in_the_way_carry_it_past_him_to_the_side():
+    d = decide(state((10.0, -5.0), ball=(10.5, -5.0), players=[opp(4, 14.0, -5.5)]), 9, 11, {})
+    assert d.method == "dribble" and d.action.target.y > -5.0  # round him, towards the middle
