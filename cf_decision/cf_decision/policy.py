@@ -381,7 +381,11 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         if mark is not None:
             why = f"{role.value}: mark the opponent at {mark[0]:.0f} {mark[1]:.0f}"
             return _hold(me_pos, goal_side(mark), why, 1.0, tired(state))
-    x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1], offside_x=offside_line(state, ball))
+    line = offside_line(state, ball)
+    x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1], offside_x=line)
+    if role is Role.FORWARD and line is not None and not their_ball(state, ball) and ball[0] > -20.0:
+        # Our ball: stand on their last line, ready to run onto a ball played behind it.
+        return _hold(me_pos, (max(x, line - 1.0), y), "forward: on their last line", tired=tired(state))
     return _hold(me_pos, (x, y), f"{role.value}: hold position", tired=tired(state))
 
 

@@ -196,3 +196,9 @@ def test_a_tired_player_walks_to_its_spot():
 def test_with_a_man_in_the_way_carry_it_past_him_to_the_side():
     d = decide(state((10.0, -5.0), ball=(10.5, -5.0), players=[opp(4, 14.0, -5.5)]), 9, 11, {})
     assert d.method == "dribble" and d.action.target.y > -5.0  # round him, towards the middle
+
+
+def test_on_our_ball_forwards_wait_on_their_last_line():
+    players = [opp(1, 50.0, 0.0, goalie=True), opp(2, 25.0, 5.0), opp(3, 22.0, -5.0), mate(7, 0.5, 0.0)]
+    d = decide(state((0.0, -16.0), ball=(0.0, 0.0), players=players, number=11), 11, 11, {7: 0})
+    assert d.method == "moveTo" and d.action.target.x == 24.0 and "last line" in d.why  # the second-last: 25
