@@ -33,7 +33,7 @@ from cf_lang.expr import to_sexp
 from cf_lang.ontology import Team, WorldState
 from cf_lang.sexp import dumps
 
-from .policy import NEVER, Decision, SetPieceTaker, decide, state_eta
+from .policy import KICKING, NEVER, Decision, SetPieceTaker, decide, state_eta
 from .requests import ActionRequests
 
 
@@ -138,6 +138,10 @@ class DecisionNode(GuardedNode, Node):
         self.taker.decided(state, decision)
         self._announce(state, may_touch)
         if self.requests.wants(decision.method, decision.action):
+            if decision.method in KICKING:
+                # One line per new way of playing the ball: what a match analysis needs, a few a minute.
+                self.requests.stats.chose(decision.why)
+                self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}")
             self._request(decision)
 
     def _request(self, decision: Decision) -> None:

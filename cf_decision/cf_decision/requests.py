@@ -10,6 +10,8 @@ sent again while that request runs.
 from __future__ import annotations
 
 import math
+import re
+from collections import Counter
 from dataclasses import dataclass, field
 
 from pydantic import BaseModel
@@ -56,12 +58,20 @@ class RequestStats:
     done: int = 0
     failed: int = 0  # the request in force failed or was refused
     replaced: int = 0  # answers to requests we had replaced already (ignored)
+    choices: Counter = field(default_factory=Counter)  # why the ball was played as it was, by reason
+
+    def chose(self, why: str) -> None:
+        """Count a choice with the ball under its reason without the numbers ("safe pass to team-mate")."""
+        bare = re.sub(r"(?<![\w-])-?\d+(\.\d+)?", "", re.sub(r"\([^)]*\)", "", why))
+        self.choices[re.sub(r"\s+([:,])", r"\1", " ".join(bare.split()))] += 1
 
     def line(self) -> str:
         per = self.requests / max(1, self.cycles)
+        played = ", ".join(f"{why} {n}" for why, n in self.choices.most_common())
         return (
             f"{self.cycles} cycles ({self.missed} missed), {self.requests} requests ({per:.2f} per cycle), {self.resends} re-sends,"
             f" {self.done} done, {self.failed} failed, {self.replaced} answers to replaced requests"
+            + (f"; with the ball: {played}" if played else "")
         )
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from cf_decision.requests import ActionRequests, same_action
+from cf_decision.requests import ActionRequests, RequestStats, same_action
 from cf_lang.ontology import AbsolutePositioning, Ball
 from cf_lang.ontology import actions as act
 
@@ -47,3 +47,15 @@ def test_an_unchanged_decision_is_sent_again_only_after_its_request_ended():
     tracker.sent("turn", act.Turn(angle=1.0), object())
     assert tracker.stats.resends == 1 and tracker.stats.failed == 1 and tracker.stats.cycles == 2
     assert "1.00 per cycle" in tracker.stats.line()
+
+
+def test_choices_with_the_ball_are_counted_by_reason_without_their_numbers():
+    stats = RequestStats()
+    for why in (
+        "forward pass to team-mate 9",
+        "forward pass to team-mate 10",
+        "fastest to a contested ball (3 cycles): win it",
+    ):
+        stats.chose(why)
+    assert stats.choices == {"forward pass to team-mate": 2, "fastest to a contested ball: win it": 1}
+    assert stats.line().endswith("with the ball: forward pass to team-mate 2, fastest to a contested ball: win it 1")

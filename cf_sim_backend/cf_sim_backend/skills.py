@@ -49,7 +49,7 @@ def _go(world: World, me: SimPlayer, x: float, y: float, power: float) -> Comman
     return ("dash", power)
 
 
-PASS_ARRIVAL_SPEED = 1.0  # m/cycle a pass still has at its target: a slow pass is a pass intercepted
+PASS_ARRIVAL_SPEED = 1.5  # m/cycle a pass still has at its target: a slow pass is a pass intercepted
 
 
 def kick_rate(world: World, me: SimPlayer) -> float:
@@ -73,19 +73,60 @@ def kick_towards(world: World, me: SimPlayer, x: float, y: float, speed: float |
     stops the ball instead (the next touch can then aim).
     """
     b, rate = world.ball, kick_rate(world, me)
-    most = min(100.0 * rate, world.params.ball_accel_max)
+    angle = math.radians(direction_deg(b.x, b.y, x, y))
+    ux, uy = math.cos(angle), math.sin(angle)
+    reach = kick_reach(world, me, x, y)
+    if reach is None:
+        ax, ay = -b.vx, -b.vy
+    else:
+        want = reach if speed is None else max(0.0, min(speed, reach))
+        ax, ay = want * ux - b.vx, want * uy - b.vy
+    return _kick_for(me, ax, ay, rate)
+
+
+def _kick_for(me: SimPlayer, ax: float, ay: float, rate: float) -> Command:
+    """The kick that gives the ball the acceleration (ax, ay)."""
+    direction = norm_deg(math.degrees(math.atan2(ay, ax)) - me.body)
+    return ("kick", max(0.0, min(100.0, math.hypot(ax, ay) / rate)), direction)
+
+
+def kick_reach(world: World, me: SimPlayer, x: float, y: float) -> float | None:
+    """The fastest the ball can leave towards (x, y) from this touch; None: it rolls too fast across to turn."""
+    b = world.ball
+    most = min(100.0 * kick_rate(world, me), world.params.ball_accel_max)
     angle = math.radians(direction_deg(b.x, b.y, x, y))
     ux, uy = math.cos(angle), math.sin(angle)
     along = ux * b.vx + uy * b.vy
     room = along * along - (b.vx * b.vx + b.vy * b.vy) + most * most
     if room < 0.0:
-        ax, ay = -b.vx, -b.vy
-    else:
-        reach = min(along + math.sqrt(room), world.params.ball_speed_max)
-        want = reach if speed is None else max(0.0, min(speed, reach))
-        ax, ay = want * ux - b.vx, want * uy - b.vy
-    direction = norm_deg(math.degrees(math.atan2(ay, ax)) - me.body)
-    return ("kick", max(0.0, min(100.0, math.hypot(ax, ay) / rate)), direction)
+        return None
+    return min(along + math.sqrt(room), world.params.ball_speed_max)
+
+
+COLLECT_AHEAD = 0.6  # m in front of the body: where a touch gives the ball nearly the most speed
+PRESSED = 2.5  # m: an opponent this close to the ball may take it during a collecting touch
+
+
+def collect_kick(world: World, me: SimPlayer) -> Command | None:
+    """A touch that lays the ball COLLECT_AHEAD in front of where I will be next cycle, if one kick can.
+
+    From there the next kick is nearly as strong as any: a ball at the edge of the kickable area or
+    behind the body leaves at two thirds of the speed or less.
+    """
+    b, rate = world.ball, kick_rate(world, me)
+    body = math.radians(me.body)
+    tx = me.x + me.vx + COLLECT_AHEAD * math.cos(body)
+    ty = me.y + me.vy + COLLECT_AHEAD * math.sin(body)
+    ax, ay = tx - b.x - b.vx, ty - b.y - b.vy
+    if math.hypot(ax, ay) > min(100.0 * rate, world.params.ball_accel_max):
+        return None
+    return _kick_for(me, ax, ay, rate)
+
+
+def pressed(world: World, me: SimPlayer) -> bool:
+    """An opponent is within PRESSED of the ball."""
+    b = world.ball
+    return any(p.side is not me.side and distance(p.x, p.y, b.x, b.y) <= PRESSED for p in world.players.values())
 
 
 class Skill:
@@ -197,6 +238,7 @@ class KickTo(Skill):
         super().__init__()
         self.name, self.x, self.y, self.power, self.approach = name, x, y, power, approach
         self.kicked = False
+        self.collected = False  # one collecting touch at most: the second kick goes whatever it gives
 
     def _step(self, world: World, me: SimPlayer) -> Step:
         b = world.ball
@@ -210,6 +252,13 @@ class KickTo(Skill):
             speed = pass_speed(world, distance(b.x, b.y, self.x, self.y))
         else:  # a share of the fastest one kick gives a still ball (100: as fast as this touch can)
             speed = None if self.power >= 100.0 else self.power / 100.0 * world.params.ball_accel_max
+        wanted = world.params.ball_accel_max if speed is None else speed
+        if not self.collected and (kick_reach(world, me, self.x, self.y) or 0.0) < 0.9 * wanted:
+            # This touch would send it off too slowly: lay it in front first, unless someone would take it.
+            self.collected = True
+            collect = None if pressed(world, me) else collect_kick(world, me)
+            if collect is not None:
+                return Step([collect])
         self.kicked = True
         return Step([kick_towards(world, me, self.x, self.y, speed)])
 
@@ -229,8 +278,20 @@ class Dribble(Skill):
             return Step([], "done")
         if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
             push = (0.15 + 0.0025 * self.speed) * world.params.ball_accel_max  # speed 70: 0.9 m/cycle
+            follow = _go(world, me, b.x + b.vx, b.y + b.vy, 100.0)
+            if follow[0] == "dash" and _rolling_towards(b, self.x, self.y, 0.6 * push):
+                # Pushed already and facing it: run after it (kicking again would cost that cycle).
+                return Step([follow])
             return Step([kick_towards(world, me, self.x, self.y, push)])
         return _tackle_for(world, me, self.x, self.y) or _chase_ball(world, me)
+
+
+def _rolling_towards(ball, x: float, y: float, speed: float) -> bool:
+    """The ball rolls at least ``speed`` within 20 degrees of the way to (x, y)."""
+    if math.hypot(ball.vx, ball.vy) < speed:
+        return False
+    off = norm_deg(math.degrees(math.atan2(ball.vy, ball.vx)) - direction_deg(ball.x, ball.y, x, y))
+    return abs(off) <= 20.0
 
 
 def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> Skill:

@@ -509,3 +509,29 @@ def test_while_our_tackle_holds_us_nothing_is_sent():
     session.receive(b"(sense_body 50 (kick 2) (dash 7) (turn 0) (move 1) (tackle (expires 0) (count 1)))")
     assert session.act().commands  # free again
     assert session.stats.get("unexecuted_dash", 0) == 0
+
+
+def test_the_head_sweeps_round_the_ball_a_see_at_a_time_and_the_field_without_one():
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 play_on)\0")
+    session.receive(b"(sense_body 40 (head_angle 0) (kick 2) (dash 7) (turn 0) (move 1))")
+    b = session.belief
+    assert session.act().commands == []  # not placed yet: no idea where the head would point
+    b.me.localised = b.see_time = 40
+    b.ball = Track(10.0, 10.0, 0.0, 0.0, 0.1, 40)  # 45 degrees off our body (server frame)
+    heads = []
+    for t in (40, 42, 44):
+        first = session.act().commands
+        assert session.act().commands == []  # one turn_neck a cycle
+        (turn,) = first
+        b.me.neck += float(turn[len("(turn_neck ") : -1])
+        heads.append(round(b.me.head))
+        b.time = b.see_time = t + 2
+    assert heads == [5, 85, 5]  # the ball (at 45) stays 40 degrees inside a 120-degree cone, left then right
+    b.ball = None  # lost: the head swings from one limit of the neck to the other
+    for t in (46, 48):
+        (turn,) = session.act().commands
+        b.me.neck += float(turn[len("(turn_neck ") : -1])
+        heads.append(round(b.me.neck))
+        b.time = b.see_time = t + 2
+    assert sorted(heads[-2:]) == [-90, 90]

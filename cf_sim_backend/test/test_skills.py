@@ -70,6 +70,29 @@ def test_dribble_keeps_the_ball_to_the_target():
     assert status == "done" and distance(sim.world.ball.x, sim.world.ball.y, 15.0, 0.0) <= 1.6
 
 
+def test_dribble_runs_after_a_pushed_ball_instead_of_kicking_it_again():
+    sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 20.0))
+    sim.world.ball.x, sim.world.ball.y = -0.3, 0.7  # beside him: after the push it is still in reach
+    me = sim.world.player(Side.LEFT, 10)
+    skill = skill_for(
+        "",
+        parse_expr(exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10)).action,
+        Side.LEFT,
+        sim.world,
+        me,
+    )
+    kinds = []
+    for _ in range(12):
+        for cmd in skill.step(sim.world, me).commands:
+            kinds.append(cmd[0])
+            sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
+        sim.step()
+    # A push, then dashes while the ball rolls on ahead: never two kicks in a row.
+    assert kinds[0] == "kick" and kinds[1] == "dash"
+    assert "kick kick" not in " ".join(kinds)
+    assert me.x > 4.0
+
+
 def test_turn_to_object_and_direction():
     sim = sim_with((Side.LEFT, 6, 0.0, 0.0, 0.0), (Side.RIGHT, 3, 0.0, 10.0, 0.0))
     assert run(sim, Side.LEFT, 6, exec_("turnToObject", ":obj (Player :playerNumber 3 :whichTeam opp)", 6))[0] == "done"
@@ -137,3 +160,41 @@ def test_a_tackle_hits_by_rcssservers_odds_and_holds_the_tackler():
         me,
     )
     assert skill.step(far.world, me).commands[0][0] != "tackle"
+
+
+def test_a_pass_from_a_ball_beside_the_body_is_laid_in_front_first_and_leaves_faster():
+    def pass_from_the_side(collect: bool) -> tuple[list[str], float]:
+        sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0))
+        sim.world.ball.x, sim.world.ball.y = 0.1, 1.0  # at the edge of the kickable area, beside the body
+        me = sim.world.player(Side.LEFT, 4)
+        skill = skill_for(
+            "",
+            parse_expr(exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4)).action,
+            Side.LEFT,
+            sim.world,
+            me,
+        )
+        skill.collected = not collect
+        kinds, speed = [], 0.0
+        for _ in range(4):
+            step = skill.step(sim.world, me)
+            for cmd in step.commands:
+                kinds.append(cmd[0])
+                sim.command(Side.LEFT, 4, *cmd)
+            sim.step()
+            speed = max(speed, math.hypot(sim.world.ball.vx, sim.world.ball.vy) / sim.world.params.ball_decay)
+            if step.status == "done":
+                break
+        return kinds, speed
+
+    kinds, laid = pass_from_the_side(collect=True)
+    assert kinds == ["kick", "kick"]
+    _, direct = pass_from_the_side(collect=False)
+    assert laid > 1.25 * direct  # the pass wants 2.7 m/cycle; from beside the body one touch gives ~1.9
+
+
+def test_a_pressed_passer_kicks_at_once():
+    sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0), (Side.RIGHT, 5, 1.5, 2.0, 180.0))
+    sim.world.ball.x, sim.world.ball.y = 0.1, 1.0
+    status, cycles = run(sim, Side.LEFT, 4, exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4), 5)
+    assert status == "done" and cycles == 2  # the kick, then done: no collecting touch with an opponent at hand

@@ -9,6 +9,7 @@ It also counts what a benchmark needs: cycles, body commands sent, and those the
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 
@@ -16,9 +17,12 @@ from cf_lang.errors import LanguageError
 from cf_sim_backend.rcss.belief import Belief
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse
 from cf_sim_backend.skills import Command, Skill
+from cf_sim_backend.world import norm_deg
 
 _EXECUTED = ("kick", "dash", "turn", "move", "catch", "tackle")  # sense_body counters of body commands
 _BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "kick", "catch", "tackle"})
+SCAN_OFFSET = 40.0  # degrees the head looks off the ball: the view cone (120 at normal width) keeps it in sight
+NECK_LIMIT = 90.0  # rcssserver's maxneckang (and -minneckang)
 _SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
 
 
@@ -76,6 +80,9 @@ class PlayerSession:
     # checked at the next cycle's sense_body, so a benchmark can tell which commands did not run.
     _last_body: tuple[int, str, int, str] | None = field(default=None, init=False)
     unexecuted: list[str] = field(default_factory=list)  # the latest ten, for a benchmark's report
+    _scan_see: int = field(default=-1, init=False)  # the see the head's scan last swung at
+    _scan_side: int = field(default=1, init=False)
+    _necked: int = field(default=-1, init=False)  # the last cycle a turn_neck went out
 
     def __post_init__(self) -> None:
         self.belief = Belief(self.team, self.goalie)
@@ -125,6 +132,36 @@ class PlayerSession:
             self.stats[key] = self.stats.get(key, 0) + 1
             self.unexecuted = [*self.unexecuted[-9:], f"{kind} sent at {sent_at} ({mode})"]
 
+    def _scan(self, sent: list[str]) -> list[str]:
+        """The turn_neck that points the head for the next see: the view cone sweeps the field.
+
+        Each see the head swings to the other side, SCAN_OFFSET off the ball, so the ball stays
+        in view and every other see shows a different half of what is round it; with no ball
+        believed, the head swings between the neck's limits. A pass is only as safe as the
+        opponents the player has seen lately.
+        """
+        b, me = self.belief, self.belief.me
+        if self._necked == b.time or me.localised < 0:
+            return []  # one turn_neck a cycle, and none before we know where we look
+        if b.see_time != self._scan_see:
+            self._scan_see, self._scan_side = b.see_time, -self._scan_side
+        body = me.body
+        for text in sent:  # this cycle's turn moves the body the neck is measured from
+            if text.startswith("(turn "):
+                inertia = float(b.param("inertia_moment", 5.0))
+                body = norm_deg(body + float(text[6:-1]) / (1.0 + inertia * math.hypot(me.vx, me.vy)))
+        if b.ball is not None:
+            to_ball = math.degrees(math.atan2(b.ball.y - me.y, b.ball.x - me.x))
+            target = norm_deg(to_ball + self._scan_side * SCAN_OFFSET - body)
+        else:
+            target = self._scan_side * NECK_LIMIT
+        neck = max(-NECK_LIMIT, min(NECK_LIMIT, target))
+        turn = neck - me.neck
+        if abs(turn) < 1.0:
+            return []
+        self._necked = b.time
+        return [f"(turn_neck {_n(turn)})"]
+
     @property
     def ready(self) -> bool:
         """Whether the server has told us who we are."""
@@ -139,8 +176,10 @@ class PlayerSession:
     def act(self) -> Acted:
         """This cycle's commands: the current skill's step, at most one body command, once per cycle."""
         b = self.belief
-        if self.skill is None or not self.ready or self.acted == b.time or b.mode == "time_over":
+        if not self.ready or b.mode == "time_over":
             return Acted()  # (after time over the server executes nothing: a command then is only noise)
+        if self.skill is None or self.acted == b.time:
+            return Acted(self._scan([]))
         if b.ball is None and self.skill.name in _BALL_SKILLS:
             # The last see showed that the ball is not where we believed: do not play a ball we
             # cannot place (the decision, told, looks for it).
@@ -149,7 +188,7 @@ class PlayerSession:
         world = b.world()
         me = world.player(b.side, b.number)
         if me.frozen > 0:
-            return Acted()  # a tackle holds us: the server would ignore any body command
+            return Acted(self._scan([]))  # a tackle holds us: the server would ignore any body command
         step = self.skill.step(world, me)
         out, body_sent = [], False
         for cmd in step.commands:
@@ -167,6 +206,10 @@ class PlayerSession:
         if body_sent:
             self.acted = b.time
             self.stats["body_commands"] += 1
+        if any(text.startswith("(turn_neck") for text in out):
+            self._necked = b.time
+        else:
+            out += self._scan(out)
         skill = self.skill
         if step.status != "running":
             self.skill = None
