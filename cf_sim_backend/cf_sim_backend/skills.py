@@ -42,11 +42,17 @@ def _absolute(side: Side, x: float, y: float) -> tuple[float, float]:
     return to_own_frame(side, x, y)  # turning by 180 degrees is its own inverse
 
 
+SIDE_STEP = 3.0  # m: a target this close is reached by dashing sideways rather than turning first
+
+
 def _go(world: World, me: SimPlayer, x: float, y: float, power: float) -> Command:
     angle = norm_deg(direction_deg(me.x, me.y, x, y) - me.body)
-    if abs(angle) > 12.0:
-        return ("turn", _turn_moment(world, me, angle))
-    return ("dash", power)
+    if abs(angle) <= 12.0:
+        return ("dash", power)
+    if distance(me.x, me.y, x, y) <= SIDE_STEP and abs(angle) <= 90.0:
+        # Close by (a ball being dribbled, a man to block): a turn every cycle would never get there.
+        return ("dash", power, round(angle))
+    return ("turn", _turn_moment(world, me, angle))
 
 
 PASS_ARRIVAL_SPEED = 1.5  # m/cycle a pass still has at its target: a slow pass is a pass intercepted

@@ -47,6 +47,8 @@ class Params:
     player_speed_max: float = 1.05
     player_rand: float = 0.1
     dash_power_rate: float = 0.006
+    side_dash_rate: float = 0.4  # a dash at 90 degrees off the body accelerates this share (rcssserver 14+)
+    back_dash_rate: float = 0.7  # and one straight back this share
     kick_power_rate: float = 0.027
     kickable_margin: float = 0.7
     inertia_moment: float = 5.0
@@ -69,6 +71,13 @@ class Params:
     @property
     def kickable_distance(self) -> float:
         return self.player_size + self.ball_size + self.kickable_margin
+
+    def dash_rate(self, direction: float) -> float:
+        """The share of a dash's power that acts ``direction`` degrees off the body (rcssserver's rule)."""
+        off = abs(direction)
+        if off > 90.0:
+            return self.back_dash_rate - (self.back_dash_rate - self.side_dash_rate) * (1.0 - (off - 90.0) / 90.0)
+        return self.side_dash_rate + (1.0 - self.side_dash_rate) * (1.0 - off / 90.0)
 
 
 @dataclass

@@ -102,6 +102,17 @@ def test_dash_speed_cap_decay_and_turn_inertia():
     assert p.body == pytest.approx(90 / (1 + 5 * speed))
 
 
+@pytest.mark.parametrize(("direction", "share"), [(0, 1.0), (45, 0.7), (90, 0.4), (-90, 0.4), (135, 0.55), (180, 0.7)])
+def test_a_dash_off_the_body_accelerates_as_rcssservers_does(direction, share):
+    sim = sim_with((Side.LEFT, 3, 0.0, 0.0, 0.0))
+    p = sim.world.player(Side.LEFT, 3)
+    sim.command(Side.LEFT, 3, "dash", 100, direction)
+    sim.step()
+    moved = math.hypot(p.x, p.y)
+    assert moved == pytest.approx(0.6 * share)
+    assert math.degrees(math.atan2(p.y, p.x)) == pytest.approx(direction if direction != -180 else 180, abs=1e-6)
+
+
 def test_ball_decays():
     sim = sim_with((Side.LEFT, 1, -40.0, 0.0, 0.0))
     b = sim.world.ball

@@ -198,3 +198,22 @@ def test_a_pressed_passer_kicks_at_once():
     sim.world.ball.x, sim.world.ball.y = 0.1, 1.0
     status, cycles = run(sim, Side.LEFT, 4, exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4), 5)
     assert status == "done" and cycles == 2  # the kick, then done: no collecting touch with an opponent at hand
+
+
+def test_a_ball_close_beside_the_player_is_chased_sideways_and_a_far_one_after_a_turn():
+    sim = sim_with((Side.LEFT, 6, 0.0, 0.0, 0.0))
+    sim.world.ball.x, sim.world.ball.y = 1.0, 2.0  # 2.2 m away, 63 degrees off the body
+    me = sim.world.player(Side.LEFT, 6)
+    (cmd,) = (
+        skill_for("", parse_expr(exec_("intercept", number=6)).action, Side.LEFT, sim.world, me)
+        .step(sim.world, me)
+        .commands
+    )
+    assert cmd[0] == "dash" and cmd[2] == pytest.approx(63, abs=1)
+    sim.world.ball.x, sim.world.ball.y = 5.0, 10.0
+    (cmd,) = (
+        skill_for("", parse_expr(exec_("intercept", number=6)).action, Side.LEFT, sim.world, me)
+        .step(sim.world, me)
+        .commands
+    )
+    assert cmd[0] == "turn"

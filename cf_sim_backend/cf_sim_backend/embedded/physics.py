@@ -49,8 +49,9 @@ def dash(world: World, p: SimPlayer, power: float, direction: float = 0.0) -> No
     cost = abs(power) * (2.0 if power < 0 else 1.0)
     effort = 1.0 if p.stamina >= cost else 0.3  # an exhausted player barely accelerates
     p.stamina = max(0.0, p.stamina - cost)
-    accel = power * prm.dash_power_rate * effort
-    angle = math.radians(p.body + _clamp(direction, -180.0, 180.0))
+    direction = _clamp(direction, -180.0, 180.0)
+    accel = power * prm.dash_power_rate * effort * prm.dash_rate(direction)
+    angle = math.radians(p.body + direction)
     p.vx, p.vy = _cap(p.vx + accel * math.cos(angle), p.vy + accel * math.sin(angle), prm.player_speed_max)
 
 
