@@ -15,8 +15,7 @@ from cf_sim_backend.world import Params, Side, distance
 
 def run(sim, side, number, text, cycles=300):
     """Carry out an exec on the simulator until the skill ends; return (status, cycles)."""
-    me = sim.world.player(side, number)
-    skill = skill_for("", parse_expr(text).action, side, sim.world, me)
+    skill, me = skill_of(sim, side, number, text)
     for _ in range(cycles):
         step = skill.step(sim.world, me)
         for cmd in step.commands:
@@ -26,6 +25,12 @@ def run(sim, side, number, text, cycles=300):
         if step.status != "running":
             return step.status, skill.cycles
     return "running", skill.cycles
+
+
+def skill_of(sim, side, number, text):
+    """The skill an exec starts for player ``number``, and the player."""
+    me = sim.world.player(side, number)
+    return skill_for("", parse_expr(text).action, side, sim.world, me), me
 
 
 def exec_(method, args="", number=7):
@@ -73,14 +78,7 @@ def test_dribble_keeps_the_ball_to_the_target():
 def test_dribble_runs_after_a_pushed_ball_instead_of_kicking_it_again():
     sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 20.0))
     sim.world.ball.x, sim.world.ball.y = -0.3, 0.7  # beside him: after the push it is still in reach
-    me = sim.world.player(Side.LEFT, 10)
-    skill = skill_for(
-        "",
-        parse_expr(exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10)).action,
-        Side.LEFT,
-        sim.world,
-        me,
-    )
+    skill, me = skill_of(sim, Side.LEFT, 10, exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10))
     kinds = []
     for _ in range(12):
         for cmd in skill.step(sim.world, me).commands:
@@ -151,14 +149,7 @@ def test_a_tackle_hits_by_rcssservers_odds_and_holds_the_tackler():
     assert abs(me.vx) < 0.05  # held: the dash did not count
     far = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0), (Side.RIGHT, 3, 3.5, 0.0, 180.0))
     far.world.ball.x = 1.9  # loose, or too far for a sure tackle: run for it instead
-    me = far.world.player(Side.LEFT, 2)
-    skill = skill_for(
-        "pass",
-        parse_expr(exec_("pass", ":target (AbsolutePositioning :x 0 :y 20)", 2)).action,
-        Side.LEFT,
-        far.world,
-        me,
-    )
+    skill, me = skill_of(far, Side.LEFT, 2, exec_("pass", ":target (AbsolutePositioning :x 0 :y 20)", 2))
     assert skill.step(far.world, me).commands[0][0] != "tackle"
 
 
@@ -166,14 +157,7 @@ def test_a_pass_from_a_ball_beside_the_body_is_laid_in_front_first_and_leaves_fa
     def pass_from_the_side(collect: bool) -> tuple[list[str], float]:
         sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0))
         sim.world.ball.x, sim.world.ball.y = 0.1, 1.0  # at the edge of the kickable area, beside the body
-        me = sim.world.player(Side.LEFT, 4)
-        skill = skill_for(
-            "",
-            parse_expr(exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4)).action,
-            Side.LEFT,
-            sim.world,
-            me,
-        )
+        skill, me = skill_of(sim, Side.LEFT, 4, exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4))
         skill.collected = not collect
         kinds, speed = [], 0.0
         for _ in range(4):
@@ -203,17 +187,9 @@ def test_a_pressed_passer_kicks_at_once():
 def test_a_ball_close_beside_the_player_is_chased_sideways_and_a_far_one_after_a_turn():
     sim = sim_with((Side.LEFT, 6, 0.0, 0.0, 0.0))
     sim.world.ball.x, sim.world.ball.y = 1.0, 2.0  # 2.2 m away, 63 degrees off the body
-    me = sim.world.player(Side.LEFT, 6)
-    (cmd,) = (
-        skill_for("", parse_expr(exec_("intercept", number=6)).action, Side.LEFT, sim.world, me)
-        .step(sim.world, me)
-        .commands
-    )
+    skill, me = skill_of(sim, Side.LEFT, 6, exec_("intercept", number=6))
+    (cmd,) = skill.step(sim.world, me).commands
     assert cmd[0] == "dash" and cmd[2] == pytest.approx(63, abs=1)
     sim.world.ball.x, sim.world.ball.y = 5.0, 10.0
-    (cmd,) = (
-        skill_for("", parse_expr(exec_("intercept", number=6)).action, Side.LEFT, sim.world, me)
-        .step(sim.world, me)
-        .commands
-    )
+    (cmd,) = skill.step(sim.world, me).commands
     assert cmd[0] == "turn"
