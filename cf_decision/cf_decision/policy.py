@@ -10,9 +10,8 @@ What it does, in order:
 - goalkeeper: catch a ball in reach, clear a kickable ball, else guard the goal
   on the line between ball and goal centre;
 - with the ball: shoot when close enough with a free line, else pass to the
-  best open team-mate ahead, else dribble where no opponent can get to the
-  ball on its way, else pass safely; pressed in our half, clear it long
-  towards the wing; near their goal, shoot anyway; else the least bad pass;
+  best open team-mate ahead, else (pressed in our own third) clear it long
+  towards the wing, else dribble towards the goal;
 - at our set piece the player with the ball passes (backwards if need be) or
   kicks long, never dribbles, and then leaves the ball to others until
   somebody else has touched it (the rules forbid the taker a second touch);
@@ -58,8 +57,6 @@ NEVER = 10**6  # cycles to the ball of a player who may not touch it
 MARK_RADIUS = 15.0  # m from a defender's or midfielder's formation spot: opponents he may mark
 MARK_DISTANCE = 1.5  # m goal-side of the marked opponent
 TIRED = 0.45  # stamina share
-DRIBBLE_PACE = 0.8  # m/cycle the ball moves on in a dribble (pushed at 0.9, run after)
-HOPEFUL_SHOT = 25.0  # m: pressed in their half with nothing better, shoot from within this distance
 MARK_BALL_X = 15.0  # mark while their ball is short of this x (deeper in their half: keep the shape)
 
 
@@ -229,10 +226,8 @@ class PassChoice:
     gain: float  # metres up the field from the ball to where it is received
 
 
-def best_pass(
-    state: WorldState, ball: tuple[float, float], min_gain: float = -1e9, margin: int = SAFE_MARGIN
-) -> PassChoice | None:
-    """The best pass a team-mate receives ``margin`` cycles before any opponent could, gaining ``min_gain``.
+def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1e9) -> PassChoice | None:
+    """The best pass a team-mate receives SAFE_MARGIN cycles before any opponent could, gaining ``min_gain``.
 
     Targets are team-mates' feet and points ahead of them (through balls); the score is how far
     up the field the ball is received, plus a little for time to spare.
@@ -252,7 +247,7 @@ def best_pass(
                 continue
             theirs = reach.first_cycles(path, opponents)
             spare = reach.HORIZON if theirs is None else theirs - ours
-            if spare < margin:
+            if spare < SAFE_MARGIN:
                 continue
             received = path[ours - 1]
             if received[0] - ball[0] < min_gain:
@@ -284,19 +279,9 @@ def dribble_room(state: WorldState, me: tuple[float, float]) -> tuple[float, flo
         heading = toward + math.radians(off if me[1] <= 0 else -off)  # try the middle of the field first
         x = min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0 * math.cos(heading))
         y = max(-FIELD.width / 2 + 3.0, min(FIELD.width / 2 - 3.0, me[1] + 10.0 * math.sin(heading)))
-        if _dist(me, (x, y)) > 4.0 and space_ahead(state, me, (x, y)) and _mine_first(state, me, (x, y)):
+        if _dist(me, (x, y)) > 4.0 and space_ahead(state, me, (x, y)):
             return (x, y)
     return None
-
-
-def _mine_first(state: WorldState, me: tuple[float, float], target: tuple[float, float]) -> bool:
-    """A dribble keeps the ball just ahead of me at DRIBBLE_PACE: no opponent may get to it on the way."""
-    d = _dist(me, target)
-    steps = max(1, math.ceil(d / DRIBBLE_PACE))
-    path = [
-        (me[0] + (target[0] - me[0]) * k / steps, me[1] + (target[1] - me[1]) * k / steps) for k in range(1, steps + 1)
-    ]
-    return reach.first_cycles(path, _sides(state)[1]) is None
 
 
 def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
@@ -320,13 +305,6 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
         # Pressed in our half with nobody to pass to: clear the ball long towards the wing.
         wing = 25.0 if me[1] >= 0 else -25.0
         return Decision("pass", act.Pass(target=_point(me[0] + 40.0, wing), power=100.0), "clear the ball")
-    if _dist(ball, GOAL) <= HOPEFUL_SHOT:
-        # Pressed near their goal: a shot the keeper may save beats a ball lost where it stands.
-        corner = (FIELD_HALF_LENGTH + 1.0, (FIELD.goal_width / 2 - 0.8) * (-1.0 if ball[1] >= 0 else 1.0))
-        return Decision("shoot", act.Shoot(target=_point(*corner), power=100.0), "pressed near goal: shoot")
-    risky = best_pass(state, ball, margin=0)
-    if risky is not None:
-        return _pass(risky, "pressed: the least bad pass")
     return Decision("dribble", act.Dribble(target=goal_ward, speed=70.0), "pressed: take it on")
 
 
