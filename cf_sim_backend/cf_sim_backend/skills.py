@@ -260,9 +260,10 @@ class KickTo(Skill):
             speed = None if self.power >= 100.0 else self.power / 100.0 * world.params.ball_accel_max
         wanted = world.params.ball_accel_max if speed is None else speed
         if not self.collected and (kick_reach(world, me, self.x, self.y) or 0.0) < 0.9 * wanted:
-            # This touch would send it off too slowly: lay it in front first, unless someone would take it.
+            # This touch would send it off too slowly: lay it in front first, unless someone would take
+            # it, or it is our set piece (a second touch before anyone else's is a free kick fault).
             self.collected = True
-            collect = None if pressed(world, me) else collect_kick(world, me)
+            collect = None if pressed(world, me) or world.mode != "play_on" else collect_kick(world, me)
             if collect is not None:
                 return Step([collect])
         self.kicked = True

@@ -177,6 +177,15 @@ def test_a_pass_from_a_ball_beside_the_body_is_laid_in_front_first_and_leaves_fa
     assert laid > 1.25 * direct  # the pass wants 2.7 m/cycle; from beside the body one touch gives ~1.9
 
 
+def test_the_taker_of_a_set_piece_kicks_at_once_a_collecting_touch_would_be_a_free_kick_fault():
+    sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0))
+    sim.world.ball.x, sim.world.ball.y = 0.1, 1.0
+    sim.world.mode = "free_kick_l"
+    status, cycles = run(sim, Side.LEFT, 4, exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4), 5)
+    assert status == "done" and cycles == 2
+    assert not sim.world.mode.startswith("free_kick_fault")
+
+
 def test_a_pressed_passer_kicks_at_once():
     sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0), (Side.RIGHT, 5, 1.5, 2.0, 180.0))
     sim.world.ball.x, sim.world.ball.y = 0.1, 1.0
