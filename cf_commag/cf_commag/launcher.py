@@ -128,16 +128,18 @@ class Launcher:
         self._dying = []
 
 
-def workspace_roots() -> tuple[str, ...]:
+def workspace_roots(module: str = __file__) -> tuple[str, ...]:
     """The install space this package runs from: where the workspace's executables live.
 
     With colcon's isolated layout (``install/<pkg>/``) that is ``install/``;
-    with a merged or system install, the prefix itself.
+    with a merged or system install, the prefix itself. The path is looked at as
+    imported first: ``colcon build --symlink-install`` links the module to the
+    source tree, which has no install space above it.
     """
-    here = Path(__file__).resolve()
-    for parent in here.parents:
-        if parent.name == "cf_commag" and (parent / "share" / "cf_commag").is_dir():
-            return (str(parent.parent),)
-        if (parent / "share" / "cf_commag" / "package.xml").is_file():
-            return (str(parent),)
+    for here in (Path(os.path.abspath(module)), Path(module).resolve()):
+        for parent in here.parents:
+            if parent.name == "cf_commag" and (parent / "share" / "cf_commag").is_dir():
+                return (str(parent.parent),)
+            if (parent / "share" / "cf_commag" / "package.xml").is_file():
+                return (str(parent),)
     return ()

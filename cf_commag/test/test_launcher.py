@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from cf_commag.launcher import Launcher, LaunchPolicy
+from cf_commag.launcher import Launcher, LaunchPolicy, workspace_roots
 from cf_commag.registry import LaunchError
 from cf_commag.store import Saver, load, save
 
@@ -125,3 +125,16 @@ def test_saver_reports_a_disk_error_and_goes_on(tmp_path: Path):
     saver.save([])
     saver.close()
     assert errors and isinstance(errors[0], OSError)
+
+
+def test_the_install_space_is_found_also_when_colcon_linked_the_module_to_the_source(tmp_path):
+    source = tmp_path / "src" / "cf_commag" / "cf_commag" / "launcher.py"
+    source.parent.mkdir(parents=True)
+    source.write_text("")
+    prefix = tmp_path / "install" / "cf_commag"
+    (prefix / "share" / "cf_commag").mkdir(parents=True)
+    linked = prefix / "lib" / "python3" / "site-packages" / "cf_commag" / "launcher.py"
+    linked.parent.mkdir(parents=True)
+    linked.symlink_to(source)  # what `colcon build --symlink-install` makes
+    assert workspace_roots(str(linked)) == (str(tmp_path / "install"),)
+    assert workspace_roots(str(source)) == ()  # the source tree alone allows nothing
