@@ -535,3 +535,19 @@ def test_the_head_sweeps_round_the_ball_a_see_at_a_time_and_the_field_without_on
         heads.append(round(b.me.neck))
         b.time = b.see_time = t + 2
     assert sorted(heads[-2:]) == [-90, 90]
+
+
+def test_the_head_sweep_allows_for_the_bodys_turn_in_the_same_cycle():
+    from cf_sim_backend.skills import TurnTo
+
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 play_on)\0")
+    session.receive(b"(sense_body 40 (head_angle 0) (kick 2) (dash 7) (turn 0) (move 1))")
+    b = session.belief
+    b.me.localised = b.see_time = 40
+    b.ball = Track(10.0, 0.0, 0.0, 0.0, 0.1, 40)  # straight ahead (server frame)
+    session.start(TurnTo(heading=60.0))
+    turn, neck = session.act().commands
+    body = float(turn[len("(turn ") : -1])  # standing still: the body turns by the whole moment
+    head = body + b.me.neck + float(neck[len("(turn_neck ") : -1])
+    assert abs(body) > 30.0 and abs(abs(head) - 40.0) < 1.0  # still 40 degrees off the ball

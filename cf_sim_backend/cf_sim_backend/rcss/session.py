@@ -132,7 +132,7 @@ class PlayerSession:
             self.stats[key] = self.stats.get(key, 0) + 1
             self.unexecuted = [*self.unexecuted[-9:], f"{kind} sent at {sent_at} ({mode})"]
 
-    def _scan(self, sent: list[str]) -> list[str]:
+    def _scan(self) -> list[str]:
         """The turn_neck that points the head for the next see: the view cone sweeps the field.
 
         Each see the head swings to the other side, SCAN_OFFSET off the ball, so the ball stays
@@ -146,10 +146,9 @@ class PlayerSession:
         if b.see_time != self._scan_see:
             self._scan_see, self._scan_side = b.see_time, -self._scan_side
         body = me.body
-        for text in sent:  # this cycle's turn moves the body the neck is measured from
-            if text.startswith("(turn "):
-                inertia = float(b.param("inertia_moment", 5.0))
-                body = norm_deg(body + float(text[6:-1]) / (1.0 + inertia * math.hypot(me.vx, me.vy)))
+        turn = b.pending.get("turn")
+        if turn is not None and turn[1] == b.sense_time:  # this cycle's turn moves the body the neck is on
+            body = norm_deg(body + turn[2][0])
         if b.ball is not None:
             to_ball = math.degrees(math.atan2(b.ball.y - me.y, b.ball.x - me.x))
             target = norm_deg(to_ball + self._scan_side * SCAN_OFFSET - body)
@@ -179,7 +178,7 @@ class PlayerSession:
         if not self.ready or b.mode == "time_over":
             return Acted()  # (after time over the server executes nothing: a command then is only noise)
         if self.skill is None or self.acted == b.time:
-            return Acted(self._scan([]))
+            return Acted(self._scan())
         if b.ball is None and self.skill.name in _BALL_SKILLS:
             # The last see showed that the ball is not where we believed: do not play a ball we
             # cannot place (the decision, told, looks for it).
@@ -188,7 +187,7 @@ class PlayerSession:
         world = b.world()
         me = world.player(b.side, b.number)
         if me.frozen > 0:
-            return Acted(self._scan([]))  # a tackle holds us: the server would ignore any body command
+            return Acted(self._scan())  # a tackle holds us: the server would ignore any body command
         step = self.skill.step(world, me)
         out, body_sent = [], False
         for cmd in step.commands:
@@ -209,7 +208,7 @@ class PlayerSession:
         if any(text.startswith("(turn_neck") for text in out):
             self._necked = b.time
         else:
-            out += self._scan(out)
+            out += self._scan()
         skill = self.skill
         if step.status != "running":
             self.skill = None
