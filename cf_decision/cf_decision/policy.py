@@ -7,11 +7,13 @@ team-mates said (who goes for the ball). Output is an ontology action for
 
 What it does, in order:
 - before a kick-off: take the formation position;
-- goalkeeper: catch a ball in reach, clear a kickable ball, else guard the goal
-  on the line between ball and goal centre;
+- goalkeeper: catch a ball in reach, clear a kickable ball, close down an
+  opponent through on goal, else guard the goal on the line between ball and
+  goal centre, further out the further the ball;
 - with the ball: shoot when close enough with a free line, else pass to the
-  best open team-mate ahead, else (pressed in our own third) clear it long
-  towards the wing, else dribble towards the goal;
+  best open team-mate ahead, else dribble into space (at full speed on an open
+  run), else (pressed in our own half) clear it long towards the wing, else
+  take it on towards the goal;
 - at our set piece the player with the ball passes (backwards if need be) or
   kicks long, never dribbles, and then leaves the ball to others until
   somebody else has touched it (the rules forbid the taker a second touch);
@@ -58,6 +60,11 @@ MARK_RADIUS = 15.0  # m from a defender's or midfielder's formation spot: oppone
 MARK_DISTANCE = 1.5  # m goal-side of the marked opponent
 TIRED = 0.45  # stamina share
 MARK_BALL_X = 15.0  # mark while their ball is short of this x (deeper in their half: keep the shape)
+KEEPER_OUT_SHARE = 0.25  # the goalkeeper stands this share of the ball's distance out of his goal,
+KEEPER_OUT_MAX = 6.0  # m: at most this far
+RUSH_DISTANCE = 14.0  # m from our goal: an opponent with the ball this close is closed down by the keeper
+OPEN_NEAR = 5.0  # m: no opponent this close, and
+OPEN_AHEAD = 15.0  # m: none this far along the way: a dribble may go at full speed
 
 
 @dataclass(frozen=True)
@@ -258,15 +265,33 @@ def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1
     return best
 
 
-def space_ahead(state: WorldState, me: tuple[float, float], towards: tuple[float, float]) -> bool:
-    """No opponent within 2.5 m, nor within 6 m and 60 degrees of the way towards ``towards``."""
+def space_ahead(
+    state: WorldState,
+    me: tuple[float, float],
+    towards: tuple[float, float],
+    near: float = 2.5,
+    ahead: float = 6.0,
+    cone: float = 60.0,
+) -> bool:
+    """No opponent within ``near``, nor within ``ahead`` and ``cone`` degrees of the way towards ``towards``."""
     heading = math.atan2(towards[1] - me[1], towards[0] - me[0])
     for pos, _ in _sides(state)[1]:
         d = _dist(me, pos)
         off = abs(math.remainder(math.atan2(pos[1] - me[1], pos[0] - me[0]) - heading, math.tau))
-        if d < 2.5 or (d < 6.0 and off < math.radians(60.0)):
+        if d < near or (d < ahead and off < math.radians(cone)):
             return False
     return True
+
+
+def dribble_speed(state: WorldState, me: tuple[float, float], towards: tuple[float, float]) -> float:
+    """Full speed (the ball pushed further ahead) on an open run; else close control.
+
+    An open run: nobody within OPEN_NEAR, nor within OPEN_AHEAD and 45 degrees of the way. A
+    dribbler at close control moves at about two thirds of a runner's pace and is caught from behind.
+    """
+    if space_ahead(state, me, towards, OPEN_NEAR, OPEN_AHEAD, 45.0):
+        return 100.0
+    return 70.0
 
 
 def dribble_room(state: WorldState, me: tuple[float, float]) -> tuple[float, float] | None:
@@ -298,7 +323,9 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     goal_ward = _point(min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0), me[1] * 0.7)
     space = dribble_room(state, me)
     if space is not None:
-        return Decision("dribble", act.Dribble(target=_point(*space), speed=70.0), "space ahead: carry it")
+        speed = dribble_speed(state, me, space)
+        why = "open run: carry it fast" if speed >= 100.0 else "space ahead: carry it"
+        return Decision("dribble", act.Dribble(target=_point(*space), speed=speed), why)
     if safe is not None:
         return _pass(safe, "safe pass")
     if me[0] < 0.0:
@@ -330,11 +357,17 @@ def goalkeeper(state: WorldState, me: tuple[float, float], ball: tuple[float, fl
             direction = math.atan2(ball[1] - me[1], ball[0] - me[0]) - (state.me.positioning.yaw or 0.0)
             direction = math.atan2(math.sin(direction), math.cos(direction))
             return Decision("catch", act.Catch(direction=direction), "ball in reach")
+        to_goal = _dist(ball, OWN_GOAL)
         if in_area and d < 8.0:
             return Decision("intercept", act.Intercept(), "ball in the penalty area")
-        # Stand on the line from the goal centre to the ball, 2 m out.
+        if in_area and to_goal < RUSH_DISTANCE and opponent_on_ball(state, ball):
+            # One on one: from the line he could not cover the goal, so close the shooter down.
+            return Decision("intercept", act.Intercept(), "one on one: close the shooter down")
+        # Stand on the line from the goal centre to the ball, further out the further the ball:
+        # at the line a shot from 10 m passes him out of reach on either side.
+        out = max(2.0, min(KEEPER_OUT_MAX, KEEPER_OUT_SHARE * to_goal))
         angle = math.atan2(ball[1] - OWN_GOAL[1], ball[0] - OWN_GOAL[0])
-        spot = (OWN_GOAL[0] + 2.0 * math.cos(angle), OWN_GOAL[1] + 2.0 * math.sin(angle) * 1.5)
+        spot = (OWN_GOAL[0] + out * math.cos(angle), OWN_GOAL[1] + out * math.sin(angle))
     else:
         spot = (OWN_GOAL[0] + 2.0, 0.0)
     if _dist(me, spot) > 1.0:

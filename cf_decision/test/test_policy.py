@@ -93,9 +93,11 @@ def test_no_pass_an_opponent_reaches_first():
 
 
 def test_with_space_ahead_carry_the_ball():
-    players = [mate(10, 8.0, 0.0), opp(4, 25.0, 0.0)]
+    players = [mate(10, 8.0, 0.0), opp(4, 12.0, 0.0)]
     d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
-    assert d.method == "dribble" and "space" in d.why
+    assert d.method == "dribble" and "space" in d.why and d.action.speed == 70.0  # a man 12 m ahead: close control
+    open_run = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=[players[0], opp(4, 25.0, 0.0)]), 7, 11, {})
+    assert open_run.method == "dribble" and open_run.action.speed == 100.0  # nobody on the way: full speed
 
 
 def test_forwards_stay_onside_and_up_the_field():
@@ -125,7 +127,19 @@ def test_goalkeeper_guards_catches_clears():
     d = decide(state((-50.0, 0.0), ball=(-48.9, 0.0), **keeper), 1, 11, {})
     assert d.method == "catch"
     d = decide(state((-40.0, 10.0), ball=(20.0, 0.0), **keeper), 1, 11, {})
-    assert d.method == "moveTo" and d.action.target.x < -48
+    assert d.method == "moveTo" and d.action.target.x < -46  # far ball: a few metres out, in the middle
+    near = decide(state((-51.0, 0.0), ball=(-35.0, 10.0), **keeper), 1, 11, {})
+    spot = (near.action.target.x, near.action.target.y)
+    assert near.method == "moveTo" and -49.0 < spot[0] < -46.0 and 1.0 < spot[1] < 3.0  # towards the ball
+
+
+def test_the_goalkeeper_closes_down_an_opponent_through_on_goal():
+    keeper = dict(number=1)
+    through = [opp(9, -42.0, 2.0)]
+    d = decide(state((-50.0, 0.0), ball=(-41.5, 2.0), players=through, **keeper), 1, 11, {})
+    assert d.method == "intercept" and "one on one" in d.why
+    loose = decide(state((-50.0, 0.0), ball=(-41.5, 2.0), **keeper), 1, 11, {})
+    assert loose.method != "intercept"  # nobody on it: keep the goal (a defender goes for it)
 
 
 def test_at_our_set_piece_pass_back_or_kick_long_never_dribble():

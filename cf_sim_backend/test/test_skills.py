@@ -75,6 +75,19 @@ def test_dribble_keeps_the_ball_to_the_target():
     assert status == "done" and distance(sim.world.ball.x, sim.world.ball.y, 15.0, 0.0) <= 1.6
 
 
+def test_an_open_run_at_full_speed_gets_there_sooner_than_close_control():
+    cycles = {}
+    for speed in (70, 100):
+        sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 0.0))
+        sim.world.ball.x = 0.6
+        target = f":target (AbsolutePositioning :x 25 :y 0) :speed {speed}"
+        status, cycles[speed] = run(sim, Side.LEFT, 10, exec_("dribble", target, 10), 400)
+        me, ball = sim.world.player(Side.LEFT, 10), sim.world.ball
+        assert status == "done" and distance(ball.x, ball.y, 25.0, 0.0) <= 2.0
+        assert distance(me.x, me.y, ball.x, ball.y) < 2.5  # still his ball
+    assert cycles[100] < 0.9 * cycles[70]
+
+
 def test_dribble_runs_after_a_pushed_ball_instead_of_kicking_it_again():
     sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 20.0))
     sim.world.ball.x, sim.world.ball.y = -0.3, 0.7  # beside him: after the push it is still in reach

@@ -146,9 +146,9 @@ class PlayerSession:
         if b.see_time != self._scan_see:
             self._scan_see, self._scan_side = b.see_time, -self._scan_side
         body = me.body
-        turn = b.pending.get("turn")
-        if turn is not None and turn[1] == b.sense_time:  # this cycle's turn moves the body the neck is on
-            body = norm_deg(body + turn[2][0])
+        pending = b.pending.get("turn")
+        if pending is not None and pending[1] == b.sense_time:  # this cycle's turn moves the body the neck is on
+            body = norm_deg(body + pending[2][0])
         if b.ball is not None:
             to_ball = math.degrees(math.atan2(b.ball.y - me.y, b.ball.x - me.x))
             target = norm_deg(to_ball + self._scan_side * SCAN_OFFSET - body)
