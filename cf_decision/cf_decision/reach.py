@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import math
 
+from cf_lang.ontology.actions import PASS_ARRIVAL_SPEED
+
 Point = tuple[float, float]
 
 BALL_DECAY = 0.94
 BALL_SPEED_MAX = 2.7  # the fastest one kick makes a still ball
-PASS_ARRIVAL_SPEED = 1.5  # the action's pass arrives with this much pace left (skills.pass_speed)
 PLAYER_SPEED = 1.0  # rcssserver: dash accel 0.6 a cycle, speed decays by 0.4: tops out at 1.0
 START_LOSS = 0.7  # metres lost to accelerating: 0.6, 1.44, 2.38, 3.35 after 1, 2, 3, 4 dashes
 TURN_CYCLES = 1

@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass
 
 from cf_lang.ontology import actions as act
+from cf_lang.ontology.actions import PASS_ARRIVAL_SPEED
 from cf_sim_backend.embedded.physics import tackle_failure
 from cf_sim_backend.perception import to_own_frame
 from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, move_allowed, norm_deg
@@ -53,9 +54,6 @@ def _go(world: World, me: SimPlayer, x: float, y: float, power: float) -> Comman
         # Close by (a ball being dribbled, a man to block): a turn every cycle would never get there.
         return ("dash", power, round(angle))
     return ("turn", _turn_moment(world, me, angle))
-
-
-PASS_ARRIVAL_SPEED = 1.5  # m/cycle a pass still has at its target: a slow pass is a pass intercepted
 
 
 def kick_rate(world: World, me: SimPlayer) -> float:

@@ -34,12 +34,19 @@ class Shoot(Concept):
     power: float = Field(default=100.0, ge=0.0, le=100.0)
 
 
+# m/cycle: a pass without :power leaves fast enough to reach its target with this pace left (slower
+# passes are intercepted). The decision plans with it and the action kicks by it.
+PASS_ARRIVAL_SPEED = 1.5
+
+
 class Pass(Concept):
     """Pass to a team-mate (``:to``) or to a point (``:target``): exactly one of them."""
 
     to: Player | None = None
     target: AbsolutePositioning | None = None
-    power: float | None = Field(default=None, ge=0.0, le=100.0, description="None: chosen for the distance")
+    power: float | None = Field(
+        default=None, ge=0.0, le=100.0, description=f"None: arrives with {PASS_ARRIVAL_SPEED} m/cycle of pace left"
+    )
 
     @model_validator(mode="after")
     def _one_target(self) -> Pass:
@@ -52,7 +59,9 @@ class Dribble(Concept):
     """Run to a target keeping the ball close."""
 
     target: AbsolutePositioning
-    speed: float = Field(default=60.0, ge=0.0, le=100.0)
+    speed: float = Field(
+        default=60.0, ge=0.0, le=100.0, description="up to 70 the ball stays a step ahead; above, it runs ahead"
+    )
 
 
 class Intercept(Concept):
