@@ -54,6 +54,7 @@ OUR_SET_PIECES = frozenset(
 )
 KICKING = frozenset({"shoot", "pass", "dribble", "kick"})
 TOUCHED = 1.5  # m: another player this close to the ball has (or may have) touched it
+FRESH_AGE = 1  # cycles: a player seen this long ago is where he was seen (rcssserver: a see every 2 cycles)
 TAKER_MEMORY = 100  # cycles after which a set piece's taker plays on as usual
 NEVER = 10**6  # cycles to the ball of a player who may not touch it
 MARK_RADIUS = 15.0  # m from a defender's or midfielder's formation spot: opponents he may mark
@@ -177,8 +178,13 @@ class SetPieceTaker:
             # Kicked, and the mode lags behind (a goal kick stays one until the ball leaves the area).
         elif mode is not PlayMode.PLAY_ON:
             self.took_at = None  # another stoppage: a new set piece
+        # Only players seen just now count: a stale sighting of the opponent who stood at the ball
+        # when play stopped would release the taker at once (a free kick fault on rcssserver).
         someone_else = ball is not None and any(
-            p.positioning is not None and _dist(_xy(p.positioning), ball) <= TOUCHED for p in state.players
+            p.positioning is not None
+            and (p.age is None or p.age <= FRESH_AGE)
+            and _dist(_xy(p.positioning), ball) <= TOUCHED
+            for p in state.players
         )
         if someone_else or (self.took_at is not None and state.time - self.took_at > TAKER_MEMORY):
             self.took_at = None

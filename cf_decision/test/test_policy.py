@@ -167,6 +167,17 @@ def test_the_taker_of_our_set_piece_leaves_the_ball_until_someone_else_touched_i
     assert taker.may_touch(touched) and taker.may_touch(after)  # a team-mate reached it: play on
 
 
+def test_a_stale_sighting_near_the_ball_does_not_release_the_taker():
+    taker = SetPieceTaker()
+    free_kick = state((-12.0, 5.0), ball=(-11.5, 5.0), mode=PlayMode.FREE_KICK_OUR)
+    taker.decided(free_kick, decide(free_kick, 7, 11, {}))
+    # Kicked softly; the opponent who committed the foul was last seen beside the ball 5 cycles ago.
+    stale = opp(7, -11.0, 5.2).model_copy(update={"age": 5})
+    assert not taker.may_touch(state((-12.0, 5.0), ball=(-10.9, 5.1), players=[stale]))
+    fresh = stale.model_copy(update={"age": 0})
+    assert taker.may_touch(state((-12.0, 5.0), ball=(-10.9, 5.1), players=[fresh]))  # he is there: it was touched
+
+
 def test_pressed_in_our_own_third_clear_long_to_the_wing_instead_of_dribbling():
     d = decide(state((-40.0, 5.0), ball=(-39.5, 5.0), players=[opp(9, -36.0, 4.0)]), 4, 11, {})
     assert d.method == "pass" and d.action.target.x > -5.0 and d.action.target.y == 25.0
