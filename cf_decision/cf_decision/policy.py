@@ -12,8 +12,8 @@ What it does, in order:
   goal centre, further out the further the ball;
 - with the ball: shoot when close enough with a free line, else pass to the
   best open team-mate ahead, else dribble into space (at full speed on an open
-  run), else (pressed in our own half) clear it long towards the wing, else
-  take it on towards the goal;
+  run), else any safe pass, else (pressed in our own half) clear it long
+  towards the wing, else take it on towards the goal;
 - at our set piece the player with the ball passes (backwards if need be) or
   kicks long, never dribbles, and then leaves the ball to others until
   somebody else has touched it (the rules forbid the taker a second touch);
