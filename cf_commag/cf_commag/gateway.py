@@ -674,7 +674,13 @@ class _Connection(asyncio.Protocol):
         """Release the session; close once what was written has gone (at most 1 s later)."""
         if self.finished and not abort:
             return
-        self.finished = self.closing = True
+        with self.lock:
+            # Lines a delivering thread left for the loop thread go out before the close:
+            # a (bye) or final error handled before that write must not drop them.
+            if self.deferred and not abort and not self.closing:
+                data, self.deferred = b"".join(self.deferred), []
+                self._write(data)
+            self.finished = self.closing = True
         self._release()
         transport = self.transport
         if abort:

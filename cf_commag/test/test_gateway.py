@@ -26,11 +26,14 @@ class FakeBus:
         self.inboxes = {}
         self.published = []
         self.watchers = {}
+        self.before_deregister = None  # a test's hook: what happens while the ComMAg answers
 
     async def register(self, record) -> Result:
         return self.registry.register(record, now=time.monotonic())[0]
 
     async def deregister(self, name) -> Result:
+        if self.before_deregister is not None:
+            self.before_deregister(name)
         return self.registry.deregister(name, now=time.monotonic())[0]
 
     async def lookup(self, query: Query) -> list[Entry]:
@@ -342,6 +345,30 @@ def test_inbox_samples_delivered_from_another_thread_arrive_whole_and_in_order(s
         t.join()
         assert got == [str(i) for i in range(3000)]
         alice.ping()  # and the gateway's own answers still come through
+
+
+def test_bye_comes_after_every_message_still_waiting_to_be_written():
+    """An inbox message the socket could not take at once waits for the loop thread;
+    a (bye) handled before that write must not close the connection over it."""
+    server = Server(max_pending_bytes=64 * 1024 * 1024)
+    try:
+        big = '(inform :sender bob :receiver alice :content "' + "x" * (8 * 1024 * 1024) + '")'
+        # Delivered while the ComMAg answers the bye; bigger than the largest kernel send buffer
+        # (4 MiB by default), so part of it always waits for the loop thread.
+        server.bus.before_deregister = lambda name: server.bus.inboxes[name](big)
+        sock = socket.socket()
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)  # a small window: the send is partial
+        sock.settimeout(10)
+        sock.connect(("127.0.0.1", server.port))
+        sock.sendall(b"(hello :name alice)\n(register :service-class Kick :team blue :player 9)\n(bye)\n")
+        data = b""
+        while chunk := sock.recv(1 << 20):
+            data += chunk
+        got = data.decode().split("\n")
+        assert got[-3:] == [big, "(bye)", ""], [f"{g[:40]}... ({len(g)} chars)" for g in got]
+        sock.close()
+    finally:
+        server.stop()
 
 
 @pytest.mark.parametrize(
