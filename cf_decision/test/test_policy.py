@@ -185,6 +185,27 @@ def test_pressed_in_our_own_third_clear_long_to_the_wing_instead_of_dribbling():
     assert d.method == "dribble"  # not pressed: carry it out
 
 
+def test_in_our_half_without_a_forward_pass_or_an_open_run_clear_it():
+    players = [mate(3, -35.0, 0.0), opp(9, -20.0, 2.0)]  # a man 10 m ahead: space, but no open run
+    d = decide(state((-30.0, -5.0), ball=(-29.5, -5.0), players=players), 4, 11, {})
+    assert d.method == "pass" and d.why == "clear the ball" and d.action.target.y == -25.0
+    ahead = decide(state((10.0, -5.0), ball=(10.5, -5.0), players=[opp(9, 20.0, -3.0)]), 9, 11, {})
+    assert ahead.method == "dribble" and "space" in ahead.why  # in their half, far from goal: carry it
+
+
+def test_near_their_goal_with_nothing_better_shoot_away_from_the_keeper():
+    keeper = opp(1, 51.0, -3.0, goalie=True)
+    blockers = [opp(n, 33.0, y) for n, y in zip(range(2, 7), (-6.0, -3.0, 0.0, 3.0, 6.0), strict=True)]
+    st = state((30.0, 0.0), ball=(30.5, 0.0), players=[keeper, *blockers])
+    assert best_shot(st, (30.5, 0.0)) is None  # no free line
+    d = decide(st, 9, 11, {})
+    assert d.method == "shoot" and d.why == "a hopeful shot" and d.action.target.y > 0.0
+    far = state((20.0, 0.0), ball=(20.5, 0.0), players=[keeper, *[opp(n, 23.0, y) for n, y in ((2, -2.0), (3, 2.0))]])
+    assert decide(far, 9, 11, {}).method != "shoot"  # 32 m out: not yet
+    corner = decide(state((40.0, 15.0), ball=(40.0, 15.0), players=[keeper], mode=PlayMode.FREE_KICK_OUR), 9, 11, {})
+    assert corner.method == "shoot" and corner.action.target.y > 0.0  # a set piece's shot: away from him too
+
+
 def test_in_our_half_the_second_fastest_presses_an_opponent_on_the_ball():
     players = [opp(9, -20.5, 0.0)]
     press = decide(state((-15.0, 5.0), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})
