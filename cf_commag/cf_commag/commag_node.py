@@ -131,6 +131,7 @@ class CommagNode(GuardedNode, LifecycleNode):
             check_launch=self._check_launch,
             cancel_launch=lambda key: self._launcher.kill(key),
             alive=lambda record: running(record.metadata),
+            launch_running=lambda key: self._launcher.pid(key) is not None,
         )
         self._store_path = (
             Path(cfg.persistence_path) if cfg.persistence_path else _ros_home() / "cf_commag" / "registry.json"

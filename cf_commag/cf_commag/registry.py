@@ -7,7 +7,8 @@ States of a component::
                                  +----launch failed (back-off)+--N failures--> withdrawn
 
 A launch fails if the launcher refuses or cannot start it, if the process
-exits, or if it does not re-register within the start-up grace.
+exits, or if it does not re-register within the start-up grace (or, while the
+process it started still runs, within the start-up grace plus ``alive_grace``).
 
 A component whose process still runs (``alive(record)`` says so: same machine, see
 process.py) is starved or hung rather than dead: it stays suspect (lookups pass it over,
@@ -117,9 +118,13 @@ class Registry:
         check_launch: Callable[[Record], str | None] | None = None,
         cancel_launch: Callable[[str], None] | None = None,
         alive: Callable[[Record], bool | None] | None = None,
+        launch_running: Callable[[str], bool] | None = None,
     ):
+        """``alive(record)``: the registered process still runs (None: cannot tell);
+        ``launch_running(key)``: the process started for that launch key still runs."""
         self.config = config or RegistryConfig()
         self._alive = alive
+        self._launch_running = launch_running
         self._launch = launch
         self._check_launch = check_launch
         self._cancel_launch = cancel_launch
@@ -255,11 +260,22 @@ class Registry:
                 elif silent > entry.lease * (1 + self.config.max_failures) + grace:
                     events.append(self._withdraw(entry, "silent and has no launch command", now))
             elif state is State.RELAUNCHING and now - entry.launch_started_at > self.config.startup_grace:
-                events += self._failed(entry, f"did not re-register within {self.config.startup_grace:.1f} s", now)
+                starting = now - entry.launch_started_at <= self.config.startup_grace + self.config.alive_grace
+                if not (starting and self._launched_still_runs(entry)):
+                    grace = self.config.startup_grace
+                    events += self._failed(entry, f"did not re-register within {grace:.1f} s", now)
         return events
 
     def _still_running(self, entry: Entry) -> bool:
         return self._alive is not None and self._alive(entry.record) is True
+
+    def _launched_still_runs(self, entry: Entry) -> bool:
+        """The process launched for ``entry`` runs yet: slow to start (a loaded machine), not failed.
+
+        Killing it at the start-up grace and starting another would add a second start to the load
+        that made the first one slow.
+        """
+        return self._launch_running is not None and self._launch_running(launch_key(entry.record))
 
     def launch_exited(self, key: str, returncode: int, *, now: float, reason: str = "") -> list[Event]:
         """A process we started (for ``launch_key`` ``key``) exited, or (``reason``) was never started."""

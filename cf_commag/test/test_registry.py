@@ -121,6 +121,31 @@ def test_launch_that_never_registers_fails_after_grace(reg, launcher):
     assert kinds(events) == [EventKind.LAUNCH_FAILED] and "within 2.0 s" in events[0].reason
 
 
+def test_a_launched_process_still_starting_gets_alive_grace_more_to_register(launcher):
+    running = {"blue_1_kick": True}
+    cfg = RegistryConfig(default_lease=1.0, startup_grace=2.0, alive_grace=3.0, max_failures=3)
+    reg = Registry(cfg, launch=launcher, launch_running=lambda key: running.get(key, False))
+    reg.register(rec(), now=0.0)
+    reg.tick(1.5)
+    assert reg.directory.get("blue_1_kick").state is State.RELAUNCHING and launcher.launched == ["blue_1_kick"]
+    assert reg.tick(4.0) == [] and reg.tick(6.0) == []  # past the start-up grace, but its process runs
+    assert reg.directory.get("blue_1_kick").state is State.RELAUNCHING
+    result, _ = reg.register(rec(), now=6.2)  # a slow start, not a failed one
+    assert result.accepted and reg.directory.get("blue_1_kick").state is State.HEALTHY
+    assert reg.directory.get("blue_1_kick").failures == 0 and launcher.launched == ["blue_1_kick"]
+    # A launch whose process runs but never registers fails after both graces.
+    reg.tick(7.5)
+    assert launcher.launched == ["blue_1_kick", "blue_1_kick"]
+    assert reg.tick(12.0) == []
+    assert kinds(reg.tick(12.6)) == [EventKind.LAUNCH_FAILED]
+    # Without a process of its own running (it exited, or another machine started it): the
+    # start-up grace alone.
+    running["blue_1_kick"] = False
+    reg.tick(13.2)
+    assert launcher.launched == ["blue_1_kick"] * 3
+    assert kinds(reg.tick(15.3)) == [EventKind.LAUNCH_FAILED]
+
+
 def test_process_exit_fails_the_launch(reg):
     reg.register(rec(), now=0.0)
     reg.tick(1.1)
