@@ -37,6 +37,19 @@ def test_killed_component_is_relaunched_and_healthy_again(procs, probe, tag, tmp
     assert "up (pid" in (tmp_path / "component-logs" / f"{name}.log").read_text()
 
 
+def test_a_relaunch_slower_than_the_start_up_grace_is_waited_for_while_its_process_runs(procs, probe, tag, tmp_path):
+    start_commag(procs, tag, tmp_path, "startup_grace:=1.0", "alive_grace:=20.0")
+    name = f"slow_{tag}"
+    comp = start_component(procs, tag, name, "--service-class", "Kick", "--lease", "0.5", "--relaunch-slow", "4")
+    probe.wait_kind(name, "registered")
+    os.kill(comp.pid, signal.SIGKILL)
+    relaunched = probe.wait_kind(name, "relaunched", timeout=60)
+    assert relaunched.record.state == "healthy"
+    # One launch, waited for past the start-up grace: not killed and started again.
+    assert probe.kinds(name)[:4] == ["registered", "suspect", "relaunching", "relaunched"]
+    assert "starting in 4.0 s" in (tmp_path / "component-logs" / f"{name}.log").read_text()
+
+
 def test_repeatedly_failing_component_is_withdrawn_and_lookup_reroutes(procs, probe, tag, tmp_path):
     start_commag(procs, tag, tmp_path, "max_failures:=3", "backoff_initial:=0.3", "backoff_max:=2.0")
     failing, twin = f"a_kick_{tag}", f"b_kick_{tag}"

@@ -8,6 +8,7 @@ withdrawal with a real process. It answers every fipa-request with
                    [--player 1] [--lease 0.5] [--commag /commag]
                    [--relaunch-fails]  # its launch command exits at once
                    [--exit-now]        # exit with code 3 before doing anything
+                   [--relaunch-slow S] # its launch command waits S seconds before starting
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import time
 
 import rclpy
 
@@ -33,15 +35,22 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--commag", default="/commag")
     parser.add_argument("--relaunch-fails", action="store_true")
     parser.add_argument("--exit-now", action="store_true")
+    parser.add_argument("--relaunch-slow", type=float, default=0.0)
+    parser.add_argument("--start-delay", type=float, default=0.0)
     args = parser.parse_args(args_in[1:])
     if args.exit_now:
         print(f"{args.name}: exiting at once, as asked (--exit-now)", flush=True)
         return 3
+    if args.start_delay:
+        print(f"{args.name}: starting in {args.start_delay} s, as asked (--start-delay)", flush=True)
+        time.sleep(args.start_delay)
 
     # Relaunch with the same arguments, from this very executable.
     launch = [os.path.realpath(sys.argv[0]), *args_in[1:]]
     if args.relaunch_fails:
         launch = [a for a in launch if a != "--relaunch-fails"] + ["--exit-now"]
+    if args.relaunch_slow:
+        launch += ["--start-delay", str(args.relaunch_slow)]
 
     init(args=argv)
     node = rclpy.create_node(args.name)
