@@ -103,7 +103,11 @@ def play(args: argparse.Namespace, n: int) -> dict:
     try:
         summary = json.loads(done.stdout.strip().splitlines()[-1])
     except (IndexError, ValueError):
-        return {"n": n, "error": f"exit {done.returncode}: {done.stderr.strip()[-300:]}"}
+        # The whole output goes to a file; the table gets the last line (the exception, as a rule).
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "error.log").write_text(done.stdout + done.stderr)
+        last = (done.stderr.strip().splitlines() or ["no output"])[-1]
+        return {"n": n, "error": f"exit {done.returncode}: {last} (all of it in {out / 'error.log'})"}
     players = summary.get("players", [])
     side = next((p["side"] for p in players if p.get("side")), "l")
     score = players[0]["score"] if players else [0, 0]
@@ -148,7 +152,7 @@ def main() -> int:
         r = play(args, n)
         rows.append(r)
         if "error" in r:
-            print(f"| {n} | failed: {r['error'][:100]} | | | | | | | |", flush=True)
+            print(f"| {n} | failed: {r['error'][:300]} | | | | | | | |", flush=True)
             continue
         shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
         off, faults = r.get("offsides", ["?", "?"]), r.get("faults", ["?", "?"])
