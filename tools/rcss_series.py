@@ -29,8 +29,8 @@ HERE = Path(__file__).resolve().parent
 GOAL_X = 52.5
 
 
-def read_rcg(path: Path) -> list[tuple[int, str, tuple[float, float], list[tuple[str, float, float, int]]]]:
-    """(time, play mode, ball, [(side, x, y, kicks so far)]) per show line of a game log (ULG5/6)."""
+def read_rcg(path: Path) -> list[tuple[int, str, tuple[float, float], list[tuple[str, int, float, float, int]]]]:
+    """(time, play mode, ball, [(side, number, x, y, kicks so far)]) per show line of a game log (ULG5/6)."""
     frames, mode = [], "before_kick_off"
     for line in path.read_text(errors="replace").splitlines():
         if line.startswith("(playmode "):
@@ -44,9 +44,9 @@ def read_rcg(path: Path) -> list[tuple[int, str, tuple[float, float], list[tuple
                 words = chunk.replace("(", " ").replace(")", " ").split()
                 if len(words) < 6 or words[0] not in ("l", "r") or words[3] == "0":
                     continue  # (not a player, or one that never connected: state 0)
-                side, x, y = words[0], float(words[4]), float(words[5])
+                side, number, x, y = words[0], int(words[1]), float(words[4]), float(words[5])
                 kicks = int(words[words.index("c") + 1]) if "c" in words else 0
-                players.append((side, x, y, kicks))
+                players.append((side, number, x, y, kicks))
             frames.append((t, mode, ball, players))
     return frames
 
@@ -59,11 +59,11 @@ def match_stats(rcg: Path, our_side: str) -> dict:
     last_kicks: dict[tuple[str, int], int] = {}
     for _, mode, (bx, by), players in frames:
         if mode == "play_on" and players:
-            nearest = min(players, key=lambda p: math.hypot(p[1] - bx, p[2] - by))
-            if math.hypot(nearest[1] - bx, nearest[2] - by) < 3.0:
+            nearest = min(players, key=lambda p: math.hypot(p[2] - bx, p[3] - by))
+            if math.hypot(nearest[2] - bx, nearest[3] - by) < 3.0:
                 possession[nearest[0]] += 1
-        for i, (side, x, y, kicks) in enumerate(players):
-            key = (side, i)
+        for side, number, x, y, kicks in players:
+            key = (side, number)
             if kicks > last_kicks.get(key, kicks):
                 goal_x = GOAL_X if side == "l" else -GOAL_X
                 if math.hypot(goal_x - x, y) < 25.0:

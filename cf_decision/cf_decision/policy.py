@@ -350,8 +350,8 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
         return Decision("dribble", act.Dribble(target=_point(*space), speed=speed), "open run: carry it fast")
     if me[0] < 0.0:
         # In our half without a forward pass or an open run: clear it long towards the wing. Against
-        # real teams a short pass or a dribble there was lost about five times in six, a clearance
-        # less than two in three, and it moves the play 15 m up the field (docs/performance.md).
+        # real teams a short pass or a dribble there reached a team-mate about one time in six and
+        # left the ball where it was (docs/decision.md): if it is lost, lose it far from our goal.
         wing = 25.0 if me[1] >= 0 else -25.0
         return Decision("pass", act.Pass(target=_point(me[0] + 40.0, wing), power=100.0), "clear the ball")
     if _dist(ball, GOAL) <= LONG_SHOT_RANGE:

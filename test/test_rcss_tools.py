@@ -1,0 +1,69 @@
+"""The match analysis tools on a small game log written here: kicks put down to the decision's reason."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
+
+from rcss_ball_use import ball_use, reason, table
+from rcss_series import match_stats, read_rcg
+
+
+def show(t: int, ball_x: float, kicks: dict[tuple[str, int], int], where: dict[tuple[str, int], float]) -> str:
+    players = " ".join(
+        f"(({side} {n}) 0 0x1 {where[(side, n)]} 0 0 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) "
+        f"(c {kicks[(side, n)]} 0 0 0 0 0 0 0 0 0 0 0))"
+        for side, n in kicks
+    )
+    return f"(show {t} ((b) {ball_x} 0 0 0) {players})"
+
+
+def write_match(tmp: Path) -> Path:
+    """CF (left) 9 passes to 10, who pushes the ball twice and loses it to PYRUS 3."""
+    kicks = {("l", 9): 0, ("l", 10): 0, ("r", 3): 0}
+    where = {("l", 9): 10.0, ("l", 10): 30.0, ("r", 3): 35.0}
+    touches = {2: ("l", 9), 5: ("l", 10), 6: ("l", 10), 8: ("r", 3)}
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 20):
+        if t in touches:
+            kicks[touches[t]] += 1
+        lines.append(show(t, float(t), kicks, where))
+    (tmp / "m.rcg").write_text("\n".join(lines) + "\n")
+    logs = tmp / "logs-CF"
+    logs.mkdir()
+    (logs / "CF_9_rcss_player.log").write_text("[INFO] [1.0] [CF_9_decision]: t=1 pass: forward pass to team-mate 10\n")
+    (logs / "CF_10_rcss_player.log").write_text(
+        "[INFO] [1.0] [CF_10_decision]: t=4 dribble: space ahead: carry it (5 cycles)\n"
+        "[INFO] [1.0] [CF_10_decision]: t=40 shoot: a free shot\n"  # after the kicks: not theirs
+    )
+    return tmp
+
+
+def test_read_rcg_gives_each_player_his_number_and_kicks(tmp_path):
+    frames = read_rcg(write_match(tmp_path) / "m.rcg")
+    assert len(frames) == 19 and frames[0][1] == "play_on"
+    t, _, ball, players = frames[7]
+    assert t == 8 and ball == (8.0, 0.0)
+    assert players == [("l", 9, 10.0, 0.0, 1), ("l", 10, 30.0, 0.0, 2), ("r", 3, 35.0, 0.0, 1)]
+    stats = match_stats(tmp_path / "m.rcg", "l")
+    assert stats["shots"] == [2, 0]  # CF 10 kicked twice 22.5 m from their goal
+
+
+def test_every_kick_of_ours_is_put_down_to_its_reason_and_judged_by_the_next_kick(tmp_path):
+    use = ball_use(write_match(tmp_path), "CF", after=3)
+    passed = use[("forward pass to team-mate", "their half")]
+    assert (passed.kept, passed.lost, passed.advance) == (1, 0, [3.0])
+    carried = use[("space ahead: carry it", "their half")]
+    assert (carried.kept, carried.lost) == (0, 1)  # the first push is his own next touch: not counted
+    assert set(use) == {("forward pass to team-mate", "their half"), ("space ahead: carry it", "their half")}
+    text = table(use, 3)
+    assert "| forward pass to team-mate | their half | 1 | 1 | 0 | 100% | +3.0 |" in text
+
+
+def test_reasons_lose_their_numbers():
+    assert (
+        reason("fastest to a contested ball (12 cycles): win it and go") == "fastest to a contested ball: win it and go"
+    )
+    assert reason("forward pass to team-mate 10") == "forward pass to team-mate"

@@ -1,0 +1,129 @@
+"""What our players did with the ball on rcssserver, and what came of it: one table row per reason.
+
+    python tools/rcss_ball_use.py MATCH_DIR [MATCH_DIR ...] [--team CF] [--after 30]
+
+A MATCH_DIR is what ``tools/rcss_match.py --game-log --out DIR`` writes (``rcss_series``: its
+``match-N``): the server's game log (``*.rcg``) and our players' logs, where each decision
+component logs every new way of playing the ball (``[CF_9_decision]: t=314 pass: forward pass
+to team-mate 10``). Each kick of ours in play is put down to the reason its player's decision
+last logged (within ``--after`` cycles before it; "?" if none), in our half or theirs, and judged
+by the next kick: a team-mate's (kept) or an opponent's (lost); the kicker's own next touch
+(a dribble's next push, a collecting touch) is not counted. The last column is how far up the
+field the ball was ``--after`` cycles later, on average (negative: back towards our goal).
+This is how docs/performance.md counts what loses the ball.
+"""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import re
+import sys
+from collections import defaultdict
+from dataclasses import dataclass, field
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rcss_series import read_rcg
+
+_DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
+_NUMBERS = re.compile(r"(?<![\w-])-?\d+(\.\d+)?")
+
+
+@dataclass
+class Outcome:
+    kept: int = 0
+    lost: int = 0
+    advance: list[float] = field(default_factory=list)
+
+
+def reason(text: str) -> str:
+    """A logged reason without its numbers: ``fastest to the ball (12 cycles)`` -> ``fastest to the ball``."""
+    words = " ".join(_NUMBERS.sub("", re.sub(r"\(.*?\)", "", text)).split())
+    return re.sub(r" ([:,])", r"\1", words)
+
+
+def decisions(match: Path, team: str) -> dict[int, list[tuple[int, str]]]:
+    """Shirt number -> [(time, reason)] from our players' logs."""
+    out: dict[int, list[tuple[int, str]]] = defaultdict(list)
+    for log in sorted(match.rglob("*.log")):
+        for line in log.read_text(errors="replace").splitlines():
+            m = _DECISION.search(line)
+            if m and m.group(1) == team:
+                out[int(m.group(2))].append((int(m.group(3)), reason(m.group(5))))
+    for entries in out.values():
+        entries.sort()
+    return out
+
+
+def our_side(rcg: Path, team: str) -> str:
+    """'l' or 'r': the side the game log's (team ...) line gives ``team``."""
+    for line in rcg.read_text(errors="replace").splitlines():
+        if line.startswith("(team "):
+            words = line.strip("()").split()
+            return "l" if words[2] == team else "r"
+    return "l"
+
+
+def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, str], Outcome]:
+    """(reason, "our half" | "their half") -> what came of our kicks in play in one match."""
+    rcg = next(iter(sorted(match.glob("*.rcg"))), None)
+    if rcg is None:
+        raise FileNotFoundError(f"no game log (*.rcg) in {match}")
+    side = our_side(rcg, team)
+    forward = 1.0 if side == "l" else -1.0
+    said = decisions(match, team)
+    frames = read_rcg(rcg)
+    kicks, last = [], {}
+    for i, (_, _, _, players) in enumerate(frames):
+        for s, number, _, _, count in players:
+            if count > last.get((s, number), count):
+                kicks.append((i, s, number))
+            last[(s, number)] = count
+    out: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
+    for (i, s, number), (_, s2, number2) in itertools.pairwise(kicks):
+        t, mode, ball, players = frames[i]
+        if s != side or mode != "play_on" or (s2, number2) == (s, number):
+            continue
+        before = [why for when, why in said.get(number, []) if t - after <= when <= t]
+        kicker = next(((x, y) for ps, n, x, y, _ in players if (ps, n) == (s, number)), ball)
+        half = "our half" if forward * kicker[0] < 0 else "their half"
+        o = out[(before[-1] if before else "?", half)]
+        if s2 == side:
+            o.kept += 1
+        else:
+            o.lost += 1
+        o.advance.append(forward * (frames[min(len(frames) - 1, i + after)][2][0] - ball[0]))
+    return out
+
+
+def table(outcomes: dict[tuple[str, str], Outcome], after: int) -> str:
+    rows = [
+        "| with the ball | where | kicks | to a team-mate | lost | kept share | ball advance after "
+        f"{after} cycles (m) |",
+        "|---|---|---:|---:|---:|---:|---:|",
+    ]
+    for (why, half), o in sorted(outcomes.items(), key=lambda kv: -(kv[1].kept + kv[1].lost)):
+        n = o.kept + o.lost
+        advance = sum(o.advance) / len(o.advance)
+        rows.append(f"| {why} | {half} | {n} | {o.kept} | {o.lost} | {o.kept / n:.0%} | {advance:+.1f} |")
+    return "\n".join(rows)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("matches", nargs="+", type=Path, help="match directories (rcss_match.py --out)")
+    ap.add_argument("--team", default="CF", help="our team's name in the game log")
+    ap.add_argument("--after", type=int, default=30, help="cycles: how long a reason holds, when the advance is read")
+    args = ap.parse_args()
+    total: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
+    for match in args.matches:
+        for key, o in ball_use(match, args.team, args.after).items():
+            t = total[key]
+            t.kept, t.lost, t.advance = t.kept + o.kept, t.lost + o.lost, t.advance + o.advance
+    print(table(total, args.after))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
