@@ -245,8 +245,9 @@ def shot_margin(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[flo
             for stopped in (reach.first_cycles(path[:arrive], group) for group in (opponents, keepers))
         )
         away = min((_dist(target, pos) for pos, _ in keepers), default=0.0)  # ties: further from him
-        if (max(margin, 0), keeper, away) > best_key:
-            best, best_key, best_margin = target, (max(margin, 0), keeper, away), margin
+        key = (max(margin, 0), keeper, away)
+        if key > best_key:
+            best, best_key, best_margin = target, key, margin
     return best, best_margin
 
 
