@@ -18,18 +18,27 @@ def pid_of(probe, name):
     return [int(p) for p in out]
 
 
+def since(probe, name, start):
+    """Registry event kinds of ``name`` from the ``start``-th on, renewals left out.
+
+    On a loaded machine a component may miss a lease (suspect, then renewed) before the test
+    kills it: the kill is then seen from suspect already.
+    """
+    return [k for k in probe.kinds(name)[start:] if k != "renewed"]
+
+
 def test_killed_component_is_relaunched_and_healthy_again(procs, probe, tag, tmp_path):
     start_commag(procs, tag, tmp_path)
     name = f"kick_{tag}"
     comp = start_component(procs, tag, name, "--service-class", "Kick", "--lease", "0.5", "--team", "blue")
     probe.wait_kind(name, "registered")
+    killed_at = len(probe.kinds(name))
     os.kill(comp.pid, signal.SIGKILL)
-    suspect = probe.wait_kind(name, "suspect")
-    assert "missed its lease" in suspect.reason
-    probe.wait_kind(name, "relaunching")
     relaunched = probe.wait_kind(name, "relaunched")
     assert relaunched.record.state == "healthy"
-    assert probe.kinds(name)[:4] == ["registered", "suspect", "relaunching", "relaunched"]
+    assert since(probe, name, killed_at) in (["suspect", "relaunching", "relaunched"], ["relaunching", "relaunched"])
+    suspect = probe.wait_kind(name, "suspect", count=probe.kinds(name).count("suspect"))
+    assert "missed its lease" in suspect.reason
     assert probe.lookup("Kick", team="blue") == [name]
     # The new process is a different one and it serves requests.
     new_pids = pid_of(probe, name)
@@ -42,11 +51,12 @@ def test_a_relaunch_slower_than_the_start_up_grace_is_waited_for_while_its_proce
     name = f"slow_{tag}"
     comp = start_component(procs, tag, name, "--service-class", "Kick", "--lease", "0.5", "--relaunch-slow", "4")
     probe.wait_kind(name, "registered")
+    killed_at = len(probe.kinds(name))
     os.kill(comp.pid, signal.SIGKILL)
     relaunched = probe.wait_kind(name, "relaunched", timeout=60)
     assert relaunched.record.state == "healthy"
     # One launch, waited for past the start-up grace: not killed and started again.
-    assert probe.kinds(name)[:4] == ["registered", "suspect", "relaunching", "relaunched"]
+    assert since(probe, name, killed_at) in (["suspect", "relaunching", "relaunched"], ["relaunching", "relaunched"])
     assert "starting in 4.0 s" in (tmp_path / "component-logs" / f"{name}.log").read_text()
 
 

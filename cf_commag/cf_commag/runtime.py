@@ -7,7 +7,7 @@ import os
 import sys
 from collections.abc import Callable, Iterable
 
-from rclpy._rclpy_pybind11 import RCLError
+from rclpy._rclpy_pybind11 import InvalidHandle, RCLError
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
@@ -37,18 +37,21 @@ def spin(
 
     signal.signal(signal.SIGTERM, _stop)
     signal.signal(signal.SIGINT, _stop)
+    # spin_once in a loop: EventsExecutor.spin() was seen to hang on shutdown.
+    spin_once = (
+        executor.spin_once
+        if executor is not None
+        else lambda timeout_sec: rclpy.spin_once(node, timeout_sec=timeout_sec)
+    )
     try:
-        if executor is None and until is None:
-            rclpy.spin(node)
-        else:
-            # spin_once in a loop: EventsExecutor.spin() was seen to hang on shutdown.
-            spin_once = (
-                executor.spin_once
-                if executor is not None
-                else lambda timeout_sec: rclpy.spin_once(node, timeout_sec=timeout_sec)
-            )
-            while rclpy.ok() and not (until is not None and until()):
+        while rclpy.ok() and not (until is not None and until()):
+            try:
                 spin_once(timeout_sec=0.1)
+            except InvalidHandle as exc:
+                # rclpy's race between an entity's destruction and its pending work (an event of a
+                # publisher or subscription destroyed meanwhile: ros2/rclpy#1142; the EventsExecutor
+                # of Jazzy does not catch it). The entity is gone; the process must go on.
+                node.get_logger().warning(f"work of a destroyed entity skipped: {exc}", throttle_duration_sec=5.0)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
