@@ -458,6 +458,11 @@ class Gateway:
         ]
 
 
+# Seconds a closing connection has to read its last lines: the abort after it throws away what is
+# unsent (the final error too). At 1 s a client starved on a loaded machine lost its final line.
+CLOSE_GRACE = 5.0
+
+
 class _Connection(asyncio.Protocol):
     """One TCP connection: splits the byte stream into lines for its session and writes its answers.
 
@@ -671,7 +676,7 @@ class _Connection(asyncio.Protocol):
     # ---- end ----------------------------------------------------------------
 
     def finish(self, abort: bool = False) -> None:
-        """Release the session; close once what was written has gone (at most 1 s later)."""
+        """Release the session; close once what was written has gone (at most CLOSE_GRACE later)."""
         if self.finished and not abort:
             return
         with self.lock:
@@ -688,7 +693,7 @@ class _Connection(asyncio.Protocol):
             return
         transport.close()
         # A peer that never reads would keep the socket open for ever.
-        asyncio.get_running_loop().call_later(1.0, transport.abort)
+        asyncio.get_running_loop().call_later(CLOSE_GRACE, transport.abort)
 
     def _release(self) -> None:
         if self.hello_timer is not None:
