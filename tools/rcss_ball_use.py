@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_series import read_rcg
+from rcss_series import kick_events, read_rcg
 
 _DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
 _NUMBERS = re.compile(r"(?<![\w-])-?\d+(\.\d+)?")
@@ -44,9 +44,9 @@ def reason(text: str) -> str:
 
 
 def decisions(match: Path, team: str) -> dict[int, list[tuple[int, str]]]:
-    """Shirt number -> [(time, reason)] from our players' logs."""
+    """Shirt number -> [(time, reason)] from our players' logs (``logs-TEAM/``, as rcss_match writes them)."""
     out: dict[int, list[tuple[int, str]]] = defaultdict(list)
-    for log in sorted(match.rglob("*.log")):
+    for log in sorted(match.glob(f"logs-{team}/*.log")):
         for line in log.read_text(errors="replace").splitlines():
             m = _DECISION.search(line)
             if m and m.group(1) == team:
@@ -74,20 +74,13 @@ def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, 
     forward = 1.0 if side == "l" else -1.0
     said = decisions(match, team)
     frames = read_rcg(rcg)
-    kicks, last = [], {}
-    for i, (_, _, _, players) in enumerate(frames):
-        for s, number, _, _, count in players:
-            if count > last.get((s, number), count):
-                kicks.append((i, s, number))
-            last[(s, number)] = count
     out: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
-    for (i, s, number), (_, s2, number2) in itertools.pairwise(kicks):
-        t, mode, ball, players = frames[i]
+    for (i, s, number, x, _), (_, s2, number2, _, _) in itertools.pairwise(kick_events(frames)):
+        t, mode, ball, _ = frames[i]
         if s != side or mode != "play_on" or (s2, number2) == (s, number):
             continue
         before = [why for when, why in said.get(number, []) if t - after <= when <= t]
-        kicker = next(((x, y) for ps, n, x, y, _ in players if (ps, n) == (s, number)), ball)
-        half = "our half" if forward * kicker[0] < 0 else "their half"
+        half = "our half" if forward * x < 0 else "their half"
         o = out[(before[-1] if before else "?", half)]
         if s2 == side:
             o.kept += 1

@@ -51,24 +51,31 @@ def read_rcg(path: Path) -> list[tuple[int, str, tuple[float, float], list[tuple
     return frames
 
 
+def kick_events(frames: list) -> list[tuple[int, str, int, float, float]]:
+    """(frame index, side, number, x, y) of every kick in ``read_rcg``'s frames, in order."""
+    events, last = [], {}
+    for i, (_, _, _, players) in enumerate(frames):
+        for side, number, x, y, kicks in players:
+            if kicks > last.get((side, number), kicks):
+                events.append((i, side, number, x, y))
+            last[(side, number)] = kicks
+    return events
+
+
 def match_stats(rcg: Path, our_side: str) -> dict:
     """Possession and shots of both sides from a game log."""
     frames = read_rcg(rcg)
     possession = {"l": 0, "r": 0}
     shots = {"l": 0, "r": 0}
-    last_kicks: dict[tuple[str, int], int] = {}
     for _, mode, (bx, by), players in frames:
         if mode == "play_on" and players:
             nearest = min(players, key=lambda p: math.hypot(p[2] - bx, p[3] - by))
             if math.hypot(nearest[2] - bx, nearest[3] - by) < 3.0:
                 possession[nearest[0]] += 1
-        for side, number, x, y, kicks in players:
-            key = (side, number)
-            if kicks > last_kicks.get(key, kicks):
-                goal_x = GOAL_X if side == "l" else -GOAL_X
-                if math.hypot(goal_x - x, y) < 25.0:
-                    shots[side] += 1
-            last_kicks[key] = kicks
+    for _, side, _, x, y in kick_events(frames):
+        goal_x = GOAL_X if side == "l" else -GOAL_X
+        if math.hypot(goal_x - x, y) < 25.0:
+            shots[side] += 1
     theirs = "r" if our_side == "l" else "l"
     total = max(1, possession["l"] + possession["r"])
     calls = referee_calls(rcg)
