@@ -225,15 +225,54 @@ def _tackle_for(world: World, me: SimPlayer, x: float, y: float) -> Step | None:
     return Step([("tackle", norm_deg(direction_deg(b.x, b.y, x, y) - me.body))])
 
 
+INTERCEPT_HORIZON = 50  # cycles of the ball's path looked along for a meeting point
+INTERCEPT_REACH = 0.8  # share of the kickable distance planned with (noise, and a touch at the edge is weak)
+
+
+def run_distance(world: World, me: SimPlayer, dashes: int) -> float:
+    """How far ``dashes`` full dashes carry the player from his present speed (rcssserver's dash model)."""
+    prm = world.params
+    v, covered = math.hypot(me.vx, me.vy), 0.0
+    for _ in range(max(0, dashes)):
+        v = min(prm.player_speed_max, v + 100.0 * prm.dash_power_rate)
+        covered += v
+        v *= prm.player_decay
+    return covered
+
+
+def intercept_point(world: World, me: SimPlayer) -> tuple[float, float, int]:
+    """Where and in how many cycles the player can first have the ball, rolling as it does.
+
+    Each cycle n of the ball's path is tried: the point is his if full dashes (after a turn when
+    it is off his body) cover the way there less his reach within n cycles. A ball he never
+    catches up with is met where it stops.
+    """
+    prm, b = world.params, world.ball
+    reach = INTERCEPT_REACH * prm.kickable_distance
+    x, y, vx, vy = b.x, b.y, b.vx, b.vy
+    for n in range(1, INTERCEPT_HORIZON + 1):
+        x, y, vx, vy = x + vx, y + vy, vx * prm.ball_decay, vy * prm.ball_decay
+        way = distance(me.x, me.y, x, y) - reach
+        if way <= 0.0:
+            return x, y, n
+        off = abs(norm_deg(direction_deg(me.x, me.y, x, y) - me.body))
+        turns = 0 if off <= 12.0 or (way <= SIDE_STEP and off <= 90.0) else 1
+        if way <= run_distance(world, me, n - turns):
+            return x, y, n
+    return x, y, INTERCEPT_HORIZON
+
+
 def _chase_ball(world: World, me: SimPlayer) -> Step:
-    """Run to where the ball will be when we could get there (a few cycles ahead)."""
+    """Run to where the ball and the player first meet; there, face the ball and wait for it."""
     b = world.ball
     if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
         return Step([], "done")
-    lead = min(10, int(distance(me.x, me.y, b.x, b.y) / 1.0))
-    decay = world.params.ball_decay
-    factor = (1 - decay**lead) / (1 - decay)
-    return Step([_go(world, me, b.x + b.vx * factor, b.y + b.vy * factor, 100.0)])
+    x, y, _ = intercept_point(world, me)
+    if distance(me.x, me.y, x, y) <= 0.5:
+        # At the meeting point before the ball: a dash would carry him past it.
+        off = norm_deg(direction_deg(me.x, me.y, b.x, b.y) - me.body)
+        return Step([("turn", _turn_moment(world, me, off))] if abs(off) > 12.0 else [])
+    return Step([_go(world, me, x, y, 100.0)])
 
 
 class Intercept(Skill):

@@ -9,7 +9,7 @@ from test_sim_core import QUIET, sim_with
 
 from cf_lang import parse_expr
 from cf_sim_backend.embedded.physics import tackle_failure
-from cf_sim_backend.skills import SkillError, skill_for
+from cf_sim_backend.skills import SkillError, intercept_point, skill_for
 from cf_sim_backend.world import Params, Side, distance
 
 
@@ -215,3 +215,26 @@ def test_a_ball_close_beside_the_player_is_chased_sideways_and_a_far_one_after_a
     sim.world.ball.x, sim.world.ball.y = 5.0, 10.0
     (cmd,) = skill.step(sim.world, me).commands
     assert cmd[0] == "turn"
+
+
+@pytest.mark.parametrize("velocity", [(0.0, 2.0), (-1.5, 1.0), (1.0, -0.5)])
+def test_a_rolling_ball_is_met_where_its_path_and_the_player_first_meet_after_one_turn_at_most(velocity):
+    sim = sim_with((Side.LEFT, 6, 0.0, 0.0, 0.0))
+    ball = sim.world.ball
+    ball.x, ball.y, (ball.vx, ball.vy) = 10.0, -10.0, velocity
+    skill, me = skill_of(sim, Side.LEFT, 6, exec_("intercept", number=6))
+    x, y, planned = intercept_point(sim.world, me)
+    commands = []
+    for _ in range(60):
+        step = skill.step(sim.world, me)
+        if step.status == "done":
+            break
+        commands += [(cmd[0], distance(me.x, me.y, x, y)) for cmd in step.commands]
+        for cmd in step.commands:
+            sim.command(Side.LEFT, 6, cmd[0], *cmd[1:])
+        sim.step()
+    assert step.status == "done"  # the ball is within his reach
+    first_dash = next(i for i, (name, _) in enumerate(commands) if name == "dash")
+    # He ran straight to the meeting point (a turn at most to face the ball there): no new aim on the way.
+    assert [name for name, far in commands[first_dash:] if name == "turn" and far > 1.0] == []
+    assert skill.cycles - 1 <= planned + 2  # cycles before the one it was done in (noise may cost one or two)
