@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+import math
+
 from cf_decision.policy import (
+    CLEAR_SPEED,
     NEVER,
     SetPieceTaker,
+    best_clearance,
     best_pass,
     best_shot,
     choose_interceptor,
@@ -12,7 +16,7 @@ from cf_decision.policy import (
     marking,
     offside_line,
 )
-from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, kicked_path
+from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path
 from cf_decision.roles import Role, home_position, role_of
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
@@ -178,9 +182,17 @@ def test_a_stale_sighting_near_the_ball_does_not_release_the_taker():
     assert taker.may_touch(state((-12.0, 5.0), ball=(-10.9, 5.1), players=[fresh]))  # he is there: it was touched
 
 
-def test_pressed_in_our_own_third_clear_long_to_the_wing_instead_of_dribbling():
+def off_by(frm, to, other):
+    """Degrees between the ways from ``frm`` to ``to`` and to ``other``."""
+    a = math.atan2(to[1] - frm[1], to[0] - frm[0]) - math.atan2(other[1] - frm[1], other[0] - frm[0])
+    return abs(math.degrees(math.remainder(a, math.tau)))
+
+
+def test_pressed_in_our_own_third_clear_it_past_the_presser_instead_of_dribbling():
     d = decide(state((-40.0, 5.0), ball=(-39.5, 5.0), players=[opp(9, -36.0, 4.0)]), 4, 11, {})
-    assert d.method == "pass" and d.action.target.x > -5.0 and d.action.target.y == 25.0
+    assert d.method == "pass" and d.why == "clear the ball" and d.action.power == 100.0
+    aim = (d.action.target.x, d.action.target.y)
+    assert aim[0] > -39.5 and off_by((-39.5, 5.0), aim, (-36.0, 4.0)) > 20.0  # not into the man
     d = decide(state((-40.0, 5.0), ball=(-39.5, 5.0), players=[opp(9, -20.0, 30.0)]), 4, 11, {})
     assert d.method == "dribble"  # not pressed: carry it out
 
@@ -188,7 +200,8 @@ def test_pressed_in_our_own_third_clear_long_to_the_wing_instead_of_dribbling():
 def test_in_our_half_without_a_forward_pass_or_an_open_run_clear_it():
     players = [mate(3, -35.0, 0.0), opp(9, -20.0, 2.0)]  # a man 10 m ahead: space, but no open run
     d = decide(state((-30.0, -5.0), ball=(-29.5, -5.0), players=players), 4, 11, {})
-    assert d.method == "pass" and d.why == "clear the ball" and d.action.target.y == -25.0
+    assert d.method == "pass" and d.why == "clear the ball"
+    assert off_by((-29.5, -5.0), (d.action.target.x, d.action.target.y), (-20.0, 2.0)) > 20.0
     ahead = decide(state((10.0, -5.0), ball=(10.5, -5.0), players=[opp(9, 20.0, -3.0)]), 9, 11, {})
     assert ahead.method == "dribble" and "space" in ahead.why  # in their half, far from goal: carry it
 
@@ -248,3 +261,28 @@ def test_on_our_ball_forwards_wait_on_their_last_line():
     players = [opp(1, 50.0, 0.0, goalie=True), opp(2, 25.0, 5.0), opp(3, 22.0, -5.0), mate(7, 0.5, 0.0)]
     d = decide(state((0.0, -16.0), ball=(0.0, 0.0), players=players, number=11), 11, 11, {7: 0})
     assert d.method == "moveTo" and d.action.target.x == 24.0 and "last line" in d.why  # the second-last: 25
+
+
+def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it_furthest_up():
+    ball = (-40.0, 0.0)
+    pressers = [opp(9, -34.0, 0.0), opp(10, -34.0, 6.0)]
+
+    def first(aim, players):
+        path = kicked_path(ball, aim, CLEAR_SPEED)
+        ours = first_cycles(path, [(at_(p), False) for p in players if p.which_team is Team.OUR])
+        theirs = first_cycles(path, [(at_(p), False) for p in players if p.which_team is Team.OPP])
+        return ours, theirs, path
+
+    with_mate = [*pressers, mate(2, -22.0, -20.0)]
+    ours, theirs, _ = first(best_clearance(state((-40.5, 0.0), ball=ball, players=with_mate), ball), with_mate)
+    assert ours is not None and theirs - ours >= 2  # the free team-mate on the right wing gets it
+    alone = [*pressers, opp(6, -20.0, -15.0)]
+    aim = best_clearance(state((-40.5, 0.0), ball=ball, players=alone), ball)
+    assert min(off_by(ball, aim, at_(p)) for p in pressers) > 15.0  # not into a presser
+    _, theirs, path = first(aim, alone)
+    _, straight, straight_path = first((ball[0] + 20.0, 0.0), alone)
+    assert path[theirs - 1][0] > straight_path[straight - 1][0]  # they get it further from our goal
+
+
+def at_(player):
+    return (player.positioning.x, player.positioning.y)
