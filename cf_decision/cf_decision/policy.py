@@ -350,9 +350,9 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     if speed >= 100.0:
         return Decision("dribble", act.Dribble(target=_point(*space), speed=speed), "open run: carry it fast")
     if me[0] < 0.0:
-        # In our half without a forward pass or an open run: clear it long towards the wing. Against
-        # real teams a short pass or a dribble there reached a team-mate about one time in six and
-        # left the ball where it was (docs/decision.md): if it is lost, lose it far from our goal.
+        # In our half without a forward pass or an open run: clear it. Against real teams a short
+        # pass or a dribble there reached a team-mate about one time in six and left the ball where
+        # it was (docs/decision.md): if it is lost, lose it far from our goal.
         return Decision("pass", act.Pass(target=_point(*best_clearance(state, ball)), power=100.0), "clear the ball")
     if _dist(ball, GOAL) <= LONG_SHOT_RANGE:
         # Near their goal every other way was lost nearly every time: a shot at least may go in.
@@ -372,8 +372,8 @@ CLEAR_SPEED = 2.0  # m/cycle: what a hurried touch of a ball not placed for it g
 
 
 def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[float, float]:
-    """Where to aim a clearance kicked as hard as possible: the way a team-mate reaches first, if any,
-    else the way the opponents reach last; of those, the one whose ball is met furthest up the field.
+    """Where to aim a clearance kicked as hard as possible: of the ways a team-mate reaches first
+    (if any, else of all), the one on which the ball is met furthest from our goal.
 
     A fixed aim (long to the near wing) went to the forward pressing the kicker about half
     the time against real teams and was lost 10 m from where it was kicked (docs/decision.md).

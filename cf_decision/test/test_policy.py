@@ -182,6 +182,10 @@ def test_a_stale_sighting_near_the_ball_does_not_release_the_taker():
     assert taker.may_touch(state((-12.0, 5.0), ball=(-10.9, 5.1), players=[fresh]))  # he is there: it was touched
 
 
+def where(player):
+    return (player.positioning.x, player.positioning.y)
+
+
 def off_by(frm, to, other):
     """Degrees between the ways from ``frm`` to ``to`` and to ``other``."""
     a = math.atan2(to[1] - frm[1], to[0] - frm[0]) - math.atan2(other[1] - frm[1], other[0] - frm[0])
@@ -269,8 +273,8 @@ def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it
 
     def first(aim, players):
         path = kicked_path(ball, aim, CLEAR_SPEED)
-        ours = first_cycles(path, [(at_(p), False) for p in players if p.which_team is Team.OUR])
-        theirs = first_cycles(path, [(at_(p), False) for p in players if p.which_team is Team.OPP])
+        ours = first_cycles(path, [(where(p), False) for p in players if p.which_team is Team.OUR])
+        theirs = first_cycles(path, [(where(p), False) for p in players if p.which_team is Team.OPP])
         return ours, theirs, path
 
     with_mate = [*pressers, mate(2, -22.0, -20.0)]
@@ -278,11 +282,7 @@ def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it
     assert ours is not None and theirs - ours >= 2  # the free team-mate on the right wing gets it
     alone = [*pressers, opp(6, -20.0, -15.0)]
     aim = best_clearance(state((-40.5, 0.0), ball=ball, players=alone), ball)
-    assert min(off_by(ball, aim, at_(p)) for p in pressers) > 15.0  # not into a presser
+    assert min(off_by(ball, aim, where(p)) for p in pressers) > 15.0  # not into a presser
     _, theirs, path = first(aim, alone)
     _, straight, straight_path = first((ball[0] + 20.0, 0.0), alone)
     assert path[theirs - 1][0] > straight_path[straight - 1][0]  # they get it further from our goal
-
-
-def at_(player):
-    return (player.positioning.x, player.positioning.y)
