@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from cf_lang.ontology.actions import PASS_ARRIVAL_SPEED
+from cf_lang.ontology import actions
 
 Point = tuple[float, float]
 
@@ -27,7 +27,7 @@ CYCLES_PER_SECOND = 10.0
 
 def pass_speed(dist: float) -> float:
     """The speed a pass leaves the foot with to cover ``dist`` metres (as the action kicks it)."""
-    return min(BALL_SPEED_MAX, PASS_ARRIVAL_SPEED + dist * (1.0 - BALL_DECAY))
+    return min(BALL_SPEED_MAX, actions.pass_speed(dist, BALL_DECAY))
 
 
 def ball_path(start: Point, velocity: Point, cycles: int = HORIZON) -> list[Point]:

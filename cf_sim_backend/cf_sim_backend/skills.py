@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass
 
 from cf_lang.ontology import actions as act
-from cf_lang.ontology.actions import PASS_ARRIVAL_SPEED
+from cf_lang.ontology.actions import pass_speed
 from cf_sim_backend.embedded.physics import tackle_failure
 from cf_sim_backend.perception import to_own_frame
 from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, move_allowed, norm_deg
@@ -67,11 +67,6 @@ def kick_rate(world: World, me: SimPlayer) -> float:
 def most_accel(world: World, rate: float) -> float:
     """The most acceleration one kick gives the ball at this kick rate."""
     return min(100.0 * rate, world.params.ball_accel_max)
-
-
-def pass_speed(world: World, dist: float) -> float:
-    """The speed that carries the ball ``dist`` metres and still arrives at PASS_ARRIVAL_SPEED."""
-    return PASS_ARRIVAL_SPEED + dist * (1.0 - world.params.ball_decay)
 
 
 def kick_towards(world: World, me: SimPlayer, x: float, y: float, speed: float | None) -> Command:
@@ -300,7 +295,7 @@ class KickTo(Skill):
                 return Step([], "failed", "the ball is not kickable")
             return _tackle_for(world, me, self.x, self.y) or _chase_ball(world, me)
         if self.power is None:  # a pass: fast enough to arrive with some pace left
-            speed = pass_speed(world, distance(b.x, b.y, self.x, self.y))
+            speed = pass_speed(distance(b.x, b.y, self.x, self.y), world.params.ball_decay)
         else:  # a share of the fastest one kick gives a still ball (100: as fast as this touch can)
             speed = None if self.power >= 100.0 else self.power / 100.0 * world.params.ball_accel_max
         wanted = world.params.ball_accel_max if speed is None else speed

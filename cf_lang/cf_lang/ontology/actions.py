@@ -39,6 +39,14 @@ class Shoot(Concept):
 PASS_ARRIVAL_SPEED = 1.5
 
 
+def pass_speed(dist: float, ball_decay: float) -> float:
+    """The speed (m/cycle) a pass without :power leaves with to arrive ``dist`` metres on at PASS_ARRIVAL_SPEED.
+
+    A rolling ball loses (1 - ball_decay) of its speed each cycle, about that share of the way in all.
+    """
+    return PASS_ARRIVAL_SPEED + dist * (1.0 - ball_decay)
+
+
 class Pass(Concept):
     """Pass to a team-mate (``:to``) or to a point (``:target``): exactly one of them."""
 
