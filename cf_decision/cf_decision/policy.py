@@ -353,11 +353,16 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
         # In our half without a forward pass or an open run: clear it. Against real teams a short
         # pass or a dribble there reached a team-mate about one time in six and left the ball where
         # it was (docs/decision.md): if it is lost, lose it far from our goal.
-        return Decision("pass", act.Pass(target=_point(*best_clearance(state, ball)), power=100.0), "clear the ball")
+        aim, _ = best_clearance(state, ball)
+        return Decision("pass", act.Pass(target=_point(*aim), power=100.0), "clear the ball")
     if _dist(ball, GOAL) <= LONG_SHOT_RANGE:
         # Near their goal every other way was lost nearly every time: a shot at least may go in.
         target, _ = shot_margin(state, ball)
         return Decision("shoot", act.Shoot(target=_point(*target), power=100.0), "a hopeful shot")
+    aim, kept = best_clearance(state, ball)
+    if kept:
+        # A close-control dribble here kept the ball about one time in ten (docs/decision.md).
+        return Decision("pass", act.Pass(target=_point(*aim), power=100.0), "kick it into space for a team-mate")
     if space is not None:
         return Decision("dribble", act.Dribble(target=_point(*space), speed=speed), "space ahead: carry it")
     if safe is not None:
@@ -371,9 +376,10 @@ CLEAR_AIM = 20.0  # m: the clearance aims at a point this far along its way (ins
 CLEAR_SPEED = 2.0  # m/cycle: what a hurried touch of a ball not placed for it gives (not the 2.7 most)
 
 
-def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[float, float]:
-    """Where to aim a clearance kicked as hard as possible: of the ways a team-mate reaches first
-    (if any, else of all), the one on which the ball is met furthest from our goal.
+def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[float, float], bool]:
+    """Where to aim a ball kicked as hard as possible: of the ways a team-mate reaches first
+    (if any, else of all), the one on which the ball is met furthest from our goal; and whether
+    a team-mate reaches it first.
 
     A fixed aim (long to the near wing) went to the forward pressing the kicker about half
     the time against real teams and was lost 10 m from where it was kicked (docs/decision.md).
@@ -394,7 +400,7 @@ def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[float,
         key = (kept, met[0], -abs(degrees))
         if best_key is None or key > best_key:
             best, best_key = target, key
-    return best
+    return best, bool(best_key and best_key[0])
 
 
 def _pass(choice: PassChoice, why: str) -> Decision:
@@ -412,9 +418,8 @@ def goalkeeper(state: WorldState, me: tuple[float, float], ball: tuple[float, fl
             ball[0] < -FIELD_HALF_LENGTH + FIELD.penalty_area_length and abs(ball[1]) < FIELD.penalty_area_width / 2
         )
         if d <= KICKABLE:
-            return Decision(
-                "pass", act.Pass(target=_point(*best_clearance(state, ball)), power=100.0), "clear the ball"
-            )
+            aim, _ = best_clearance(state, ball)
+            return Decision("pass", act.Pass(target=_point(*aim), power=100.0), "clear the ball")
         if in_area and d <= 1.2:
             direction = math.atan2(ball[1] - me[1], ball[0] - me[0]) - (state.me.positioning.yaw or 0.0)
             direction = math.atan2(math.sin(direction), math.cos(direction))

@@ -90,14 +90,14 @@ def test_pass_forward_to_a_team_mate_who_gets_there_first():
 def test_no_pass_an_opponent_reaches_first():
     players = [mate(10, 20.0, 0.0), opp(4, 10.0, 0.3), opp(5, 3.0, 3.0)]
     assert best_pass(state((0.0, 0.0), players=players), (0.5, 0.0)) is None
-    d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
+    d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players[1:]), 7, 11, {})
     assert d.method == "dribble"  # nobody to pass to in their half: take it on
     free = [mate(10, 20.0, 0.0), opp(4, 10.0, 12.0)]
     assert best_pass(state((0.0, 0.0), players=free), (0.5, 0.0)).number == 10
 
 
 def test_with_space_ahead_carry_the_ball():
-    players = [mate(10, 8.0, 0.0), opp(4, 12.0, 0.0)]
+    players = [mate(10, -8.0, 0.0), opp(4, 12.0, 0.0)]
     d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
     assert d.method == "dribble" and "space" in d.why and d.action.speed == 70.0  # a man 12 m ahead: close control
     open_run = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=[players[0], opp(4, 25.0, 0.0)]), 7, 11, {})
@@ -278,11 +278,23 @@ def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it
         return ours, theirs, path
 
     with_mate = [*pressers, mate(2, -22.0, -20.0)]
-    ours, theirs, _ = first(best_clearance(state((-40.5, 0.0), ball=ball, players=with_mate), ball), with_mate)
+    ours, theirs, _ = first(best_clearance(state((-40.5, 0.0), ball=ball, players=with_mate), ball)[0], with_mate)
     assert ours is not None and theirs - ours >= 2  # the free team-mate on the right wing gets it
     alone = [*pressers, opp(6, -20.0, -15.0)]
-    aim = best_clearance(state((-40.5, 0.0), ball=ball, players=alone), ball)
+    aim, kept = best_clearance(state((-40.5, 0.0), ball=ball, players=alone), ball)
+    assert not kept
     assert min(off_by(ball, aim, where(p)) for p in pressers) > 15.0  # not into a presser
     _, theirs, path = first(aim, alone)
     _, straight, straight_path = first((ball[0] + 20.0, 0.0), alone)
     assert path[theirs - 1][0] > straight_path[straight - 1][0]  # they get it further from our goal
+
+
+def test_in_their_half_a_ball_into_space_a_team_mate_reaches_first_comes_before_a_dribble():
+    players = [opp(1, 50.0, 0.0, goalie=True), opp(4, 22.0, 3.0), opp(8, 18.0, 8.0), opp(6, 12.8, -7.5)]
+    blocked = [*players, mate(11, 20.0, -10.0)]  # our forward, with a man on the line to his feet
+    assert best_pass(state((5.0, -5.0), players=blocked), (5.5, -5.0), min_gain=10.0) is None
+    d = decide(state((5.0, -5.0), ball=(5.5, -5.0), players=blocked, number=9), 9, 11, {})
+    assert d.method == "pass" and d.why == "kick it into space for a team-mate" and d.action.power == 100.0
+    assert d.action.target.y < -12.0  # out wide, past the man, where the forward gets it first
+    d = decide(state((5.0, -5.0), ball=(5.5, -5.0), players=players, number=9), 9, 11, {})
+    assert d.method == "dribble"  # nobody of ours to reach it: carry it as before
