@@ -387,7 +387,7 @@ def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[
     """
     mates, opponents = _sides(state)
     ours_all = [(pos, False) for _, pos in mates]
-    best, best_key = (ball[0] + CLEAR_AIM, ball[1]), None
+    ways = []
     for degrees in CLEAR_ANGLES:
         heading = math.radians(degrees)
         target = (ball[0] + CLEAR_AIM * math.cos(heading), ball[1] + CLEAR_AIM * math.sin(heading))
@@ -397,10 +397,9 @@ def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[
         ours, theirs = reach.first_cycles(path, ours_all), reach.first_cycles(path, opponents)
         kept = ours is not None and (theirs is None or theirs - ours >= SAFE_MARGIN)
         met = path[(ours if kept else theirs or len(path)) - 1]
-        key = (kept, met[0], -abs(degrees))
-        if best_key is None or key > best_key:
-            best, best_key = target, key
-    return best, bool(best_key and best_key[0])
+        ways.append(((kept, met[0], -abs(degrees)), target))
+    (kept, _, _), best = max(ways, key=lambda way: way[0])  # the first of equals, as the angles go
+    return best, kept
 
 
 def _pass(choice: PassChoice, why: str) -> Decision:

@@ -44,11 +44,12 @@ def _absolute(side: Side, x: float, y: float) -> tuple[float, float]:
 
 
 SIDE_STEP = 3.0  # m: a target this close is reached by dashing sideways rather than turning first
+AIM_TOLERANCE = 12.0  # degrees: a target this far off the body is run at without turning first
 
 
 def _go(world: World, me: SimPlayer, x: float, y: float, power: float) -> Command:
     angle = norm_deg(direction_deg(me.x, me.y, x, y) - me.body)
-    if abs(angle) <= 12.0:
+    if abs(angle) <= AIM_TOLERANCE:
         return ("dash", power)
     if distance(me.x, me.y, x, y) <= SIDE_STEP and abs(angle) <= 90.0:
         # Close by (a ball being dribbled, a man to block): a turn every cycle would never get there.
@@ -224,15 +225,16 @@ INTERCEPT_HORIZON = 50  # cycles of the ball's path looked along for a meeting p
 INTERCEPT_REACH = 0.8  # share of the kickable distance planned with (noise, and a touch at the edge is weak)
 
 
-def run_distance(world: World, me: SimPlayer, dashes: int) -> float:
-    """How far ``dashes`` full dashes carry the player from his present speed (rcssserver's dash model)."""
+def run_distances(world: World, me: SimPlayer, dashes: int) -> list[float]:
+    """How far 0, 1, ... ``dashes`` full dashes carry the player from his present speed (rcssserver's dash model)."""
     prm = world.params
-    v, covered = math.hypot(me.vx, me.vy), 0.0
-    for _ in range(max(0, dashes)):
+    v, covered, out = math.hypot(me.vx, me.vy), 0.0, [0.0]
+    for _ in range(dashes):
         v = min(prm.player_speed_max, v + 100.0 * prm.dash_power_rate)
         covered += v
+        out.append(covered)
         v *= prm.player_decay
-    return covered
+    return out
 
 
 def intercept_point(world: World, me: SimPlayer) -> tuple[float, float, int]:
@@ -244,6 +246,7 @@ def intercept_point(world: World, me: SimPlayer) -> tuple[float, float, int]:
     """
     prm, b = world.params, world.ball
     reach = INTERCEPT_REACH * prm.kickable_distance
+    runs = run_distances(world, me, INTERCEPT_HORIZON)
     x, y, vx, vy = b.x, b.y, b.vx, b.vy
     for n in range(1, INTERCEPT_HORIZON + 1):
         x, y, vx, vy = x + vx, y + vy, vx * prm.ball_decay, vy * prm.ball_decay
@@ -251,8 +254,8 @@ def intercept_point(world: World, me: SimPlayer) -> tuple[float, float, int]:
         if way <= 0.0:
             return x, y, n
         off = abs(norm_deg(direction_deg(me.x, me.y, x, y) - me.body))
-        turns = 0 if off <= 12.0 or (way <= SIDE_STEP and off <= 90.0) else 1
-        if way <= run_distance(world, me, n - turns):
+        turns = 0 if off <= AIM_TOLERANCE or (way <= SIDE_STEP and off <= 90.0) else 1
+        if way <= runs[n - turns]:
             return x, y, n
     return x, y, INTERCEPT_HORIZON
 
@@ -266,7 +269,7 @@ def _chase_ball(world: World, me: SimPlayer) -> Step:
     if distance(me.x, me.y, x, y) <= 0.5:
         # At the meeting point before the ball: a dash would carry him past it.
         off = norm_deg(direction_deg(me.x, me.y, b.x, b.y) - me.body)
-        return Step([("turn", _turn_moment(world, me, off))] if abs(off) > 12.0 else [])
+        return Step([("turn", _turn_moment(world, me, off))] if abs(off) > AIM_TOLERANCE else [])
     return Step([_go(world, me, x, y, 100.0)])
 
 
