@@ -14,8 +14,10 @@ import argparse
 import random
 import statistics
 
-from cf_decision.policy import NEVER, SetPieceTaker, decide, state_eta
+from cf_decision.policy import decide
 from cf_decision.requests import same_request
+from cf_decision.set_piece import SetPieceTaker
+from cf_decision.without_ball import NEVER, state_eta
 from cf_sim_backend.embedded.chaser import chase_commands
 from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.perception import observe

@@ -7,7 +7,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
-from rcss_ball_use import ball_use, reason, table
+from rcss_ball_use import ball_use, reason, table, territory, territory_table
 from rcss_series import match_stats, read_rcg
 
 
@@ -67,3 +67,12 @@ def test_reasons_lose_their_numbers():
         reason("fastest to a contested ball (12 cycles): win it and go") == "fastest to a contested ball: win it and go"
     )
     assert reason("forward pass to team-mate 10") == "forward pass to team-mate"
+
+
+def test_where_each_team_had_the_ball_and_won_it_back_by_third_of_the_field(tmp_path):
+    where = territory(write_match(tmp_path), "CF")
+    # The ball rolls from x=1 to 19 (our frame); CF have it from their first kick (t=2) to PYRUS's (t=8).
+    assert where["us"].held == [0, 6, 0] and where["us"].won == [0, 0, 0]  # the first kick wins nothing back
+    assert where["them"].held == [0, 10, 2] and where["them"].won == [0, 1, 0]  # past x=17.5: their third
+    text = territory_table(where, "PYRUS")
+    assert "| us | 0% | 33% | 0% | 0 | 0 | 0 |" in text and "| PYRUS | 0% | 56% | 11% | 0 | 1 | 0 |" in text

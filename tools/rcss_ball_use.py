@@ -11,11 +11,16 @@ by the next kick: a team-mate's (kept) or an opponent's (lost); the kicker's own
 (a dribble's next push, a collecting touch) is not counted. The last column is how far up the
 field the ball was ``--after`` cycles later, on average (negative: back towards our goal).
 This is how docs/performance.md counts what loses the ball.
+
+A second table says where on the field each team had the ball (the share of play-on cycles
+after its last kick, by the ball's third of the field, thirds counted from our goal) and where
+it won the ball back (its first kick after the other team's).
 """
 
 from __future__ import annotations
 
 import argparse
+import functools
 import itertools
 import re
 import sys
@@ -24,7 +29,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_series import kick_events, read_rcg
+from rcss_series import GOAL_X, kick_events, read_rcg
 
 _DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
 _NUMBERS = re.compile(r"(?<![\w-])-?\d+(\.\d+)?")
@@ -65,15 +70,20 @@ def our_side(rcg: Path, team: str) -> str:
     return "l"
 
 
-def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, str], Outcome]:
-    """(reason, "our half" | "their half") -> what came of our kicks in play in one match."""
+@functools.lru_cache(maxsize=4)
+def game(match: Path, team: str) -> tuple[list, str, float]:
+    """A match's frames (read once), our side, and +1 or -1: the way our attack goes along x."""
     rcg = next(iter(sorted(match.glob("*.rcg"))), None)
     if rcg is None:
         raise FileNotFoundError(f"no game log (*.rcg) in {match}")
     side = our_side(rcg, team)
-    forward = 1.0 if side == "l" else -1.0
+    return read_rcg(rcg), side, 1.0 if side == "l" else -1.0
+
+
+def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, str], Outcome]:
+    """(reason, "our half" | "their half") -> what came of our kicks in play in one match."""
+    frames, side, forward = game(match, team)
     said = decisions(match, team)
-    frames = read_rcg(rcg)
     out: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
     for (i, s, number, x, _), (_, s2, number2, _, _) in itertools.pairwise(kick_events(frames)):
         t, mode, ball, _ = frames[i]
@@ -88,6 +98,49 @@ def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, 
             o.lost += 1
         o.advance.append(forward * (frames[min(len(frames) - 1, i + after)][2][0] - ball[0]))
     return out
+
+
+THIRD = GOAL_X / 3  # m from the halfway line to the edge of the middle third
+
+
+@dataclass
+class Territory:
+    held: list[int] = field(default_factory=lambda: [0, 0, 0])  # play-on cycles: our third, middle, theirs
+    won: list[int] = field(default_factory=lambda: [0, 0, 0])
+
+
+def territory(match: Path, team: str = "CF") -> dict[str, Territory]:
+    """Where each team ("us", "them") had the ball and won it back, in thirds seen from our goal."""
+    frames, side, forward = game(match, team)
+    kicked_at = {i: s for i, s, *_ in kick_events(frames)}  # the last kick of a frame decides
+    out = {"us": Territory(), "them": Territory()}
+    holder = None
+    for i, (_, mode, ball, _) in enumerate(frames):
+        third = 0 if forward * ball[0] < -THIRD else 1 if forward * ball[0] <= THIRD else 2
+        kicker = kicked_at.get(i)
+        if kicker is not None:
+            who = "us" if kicker == side else "them"
+            if holder is not None and who != holder and mode == "play_on":
+                out[who].won[third] += 1
+            holder = who
+        if mode == "play_on" and holder is not None:
+            out[holder].held[third] += 1
+    return out
+
+
+def territory_table(where: dict[str, Territory], opponent: str = "them") -> str:
+    rows = [
+        "| team | had the ball in our third | middle third | their third | won it in our third | middle third "
+        "| their third |",
+        "|---|---:|---:|---:|---:|---:|---:|",
+    ]
+    total = sum(sum(t.held) for t in where.values()) or 1
+    for key, name in (("us", "us"), ("them", opponent)):
+        t = where[key]
+        rows.append(
+            f"| {name} | " + " | ".join(f"{n / total:.0%}" for n in t.held) + " | " + " | ".join(map(str, t.won)) + " |"
+        )
+    return "\n".join(rows)
 
 
 def table(outcomes: dict[tuple[str, str], Outcome], after: int) -> str:
@@ -110,11 +163,17 @@ def main() -> int:
     ap.add_argument("--after", type=int, default=30, help="cycles: how long a reason holds, when the advance is read")
     args = ap.parse_args()
     total: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
+    where = {"us": Territory(), "them": Territory()}
     for match in args.matches:
         for key, o in ball_use(match, args.team, args.after).items():
             t = total[key]
             t.kept, t.lost, t.advance = t.kept + o.kept, t.lost + o.lost, t.advance + o.advance
+        for key, t in territory(match, args.team).items():
+            where[key].held = [a + b for a, b in zip(where[key].held, t.held, strict=True)]
+            where[key].won = [a + b for a, b in zip(where[key].won, t.won, strict=True)]
     print(table(total, args.after))
+    print()
+    print(territory_table(where))
     return 0
 
 

@@ -1,1 +1,1 @@
-"""cf_decision: the league-independent decision component (policy.py, roles.py ROS-free; decision_node.py)."""
+"""cf_decision: the league-independent decision component (ROS-free policy modules; decision_node.py)."""

@@ -33,8 +33,11 @@ from cf_lang.expr import to_sexp
 from cf_lang.ontology import Team, WorldState
 from cf_lang.sexp import dumps
 
-from .policy import KICKING, NEVER, Decision, SetPieceTaker, decide, state_eta
+from .policy import decide
 from .requests import ActionRequests
+from .set_piece import KICKING, SetPieceTaker
+from .situation import Decision
+from .without_ball import NEVER, state_eta
 
 
 class DecisionParams(ComponentParams):

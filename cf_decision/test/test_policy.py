@@ -4,20 +4,13 @@ from __future__ import annotations
 
 import math
 
-from cf_decision.policy import (
-    CLEAR_SPEED,
-    NEVER,
-    SetPieceTaker,
-    best_clearance,
-    best_pass,
-    best_shot,
-    choose_interceptor,
-    decide,
-    marking,
-    offside_line,
-)
+from cf_decision.policy import decide
 from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path
 from cf_decision.roles import Role, home_position, role_of
+from cf_decision.set_piece import SetPieceTaker
+from cf_decision.situation import offside_line
+from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot
+from cf_decision.without_ball import NEVER, choose_interceptor, marking
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 

@@ -1,0 +1,91 @@
+"""What a decision reads from a WorldState (ROS-free): positions, the play mode, who is where,
+whose ball it is; and the Decision it makes. Positions are in the player's own frame (x towards
+the opponents' goal), in metres.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from cf_lang.ontology import FIELD, AbsolutePositioning, PlayMode, Team, WorldState
+
+FIELD_HALF_LENGTH = FIELD.half_length
+GOAL = (FIELD_HALF_LENGTH, 0.0)
+OWN_GOAL = (-FIELD_HALF_LENGTH, 0.0)
+KICKABLE = 1.0
+
+
+@dataclass(frozen=True)
+class Decision:
+    """What the player does now: the ``(exec Player <method> ...)`` method, its action, and why (logged)."""
+
+    method: str
+    action: object  # an ontology action model
+    why: str
+
+
+def xy(pos: AbsolutePositioning | None) -> tuple[float, float] | None:
+    """A positioning as an (x, y) pair."""
+    return (pos.x, pos.y) if pos is not None else None
+
+
+def play_mode(state: WorldState) -> PlayMode:
+    """The play mode in ``state`` (play on if it says none)."""
+    return state.game.play_mode if state.game else PlayMode.PLAY_ON
+
+
+def dist(a: tuple[float, float], b: tuple[float, float]) -> float:
+    return math.hypot(a[0] - b[0], a[1] - b[1])
+
+
+def point(x: float, y: float) -> AbsolutePositioning:
+    """An action's target, kept within a few metres of the field."""
+    return AbsolutePositioning(x=max(-60.0, min(60.0, x)), y=max(-40.0, min(40.0, y)))
+
+
+def sides(state: WorldState) -> tuple[list[tuple[int, tuple[float, float]]], list[tuple[tuple[float, float], bool]]]:
+    """Team-mates (number, position) other than me, and opponents (position, goalkeeper)."""
+    mates, opponents = [], []
+    me = state.me.player_number if state.me else None
+    for p in state.players:
+        if p.positioning is None:
+            continue
+        if p.which_team is Team.OUR and p.player_number not in (None, me):
+            mates.append((p.player_number, xy(p.positioning)))
+        elif p.which_team is Team.OPP:
+            opponents.append((xy(p.positioning), bool(p.is_goalie)))
+    return mates, opponents
+
+
+def opponent_on_ball(state: WorldState, ball: tuple[float, float]) -> bool:
+    """An opponent has the ball at his feet (within 2 m)."""
+    return any(
+        p.which_team is Team.OPP and p.positioning is not None and dist(xy(p.positioning), ball) < 2.0
+        for p in state.players
+    )
+
+
+def their_ball(state: WorldState, ball: tuple[float, float]) -> bool:
+    """An opponent is the player nearest the ball (or has it at his feet)."""
+    nearest_opp = min(
+        (dist(xy(p.positioning), ball) for p in state.players if p.which_team is Team.OPP and p.positioning),
+        default=None,
+    )
+    if nearest_opp is None:
+        return False
+    ours = [dist(xy(p.positioning), ball) for p in state.players if p.which_team is Team.OUR and p.positioning]
+    if state.me and state.me.positioning:
+        ours.append(dist(xy(state.me.positioning), ball))
+    return nearest_opp < 2.0 or nearest_opp < min(ours, default=1e9)
+
+
+def offside_line(state: WorldState, ball: tuple[float, float]) -> float | None:
+    """The x beyond which our attackers are offside: the second-last opponent's, or the ball's if further.
+
+    None while fewer than two opponents are known (the line cannot be told).
+    """
+    xs = sorted((p.positioning.x for p in state.players if p.which_team is Team.OPP and p.positioning), reverse=True)
+    if len(xs) < 2:
+        return None
+    return max(xs[1], ball[0], 0.0)

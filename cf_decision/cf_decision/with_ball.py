@@ -1,0 +1,246 @@
+"""The player with the ball (ROS-free): shots, passes, dribbles and clearances, judged with the
+reach model (:mod:`reach`) on what the player believes.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from cf_lang.ontology import FIELD, Player, Team, WorldState
+from cf_lang.ontology import actions as act
+
+from . import reach
+from .set_piece import OUR_SET_PIECES
+from .situation import FIELD_HALF_LENGTH, GOAL, Decision, dist, play_mode, point, sides, xy
+
+SHOOT_RANGE = 22.0  # at a set piece, shoot from within this distance
+SHOT_RANGE = 30.0  # in play, consider shots from within this distance
+LONG_SHOT_RANGE = 25.0  # in play, with nothing better, shoot anyway from within this distance
+SHOT_SPEED = 2.4  # m/cycle a shot is assumed to leave the foot with
+SAFE_MARGIN = 2  # cycles: our receiver must be this much sooner at the ball than any opponent
+OPEN_NEAR = 5.0  # m: no opponent this close, and
+OPEN_AHEAD = 15.0  # m: none this far along the way: a dribble may go at full speed
+CLEAR_ANGLES = range(-70, 71, 10)  # degrees off straight up the field a clearance may take
+CLEAR_AIM = 20.0  # m: the clearance aims at a point this far along its way (inside the field)
+CLEAR_SPEED = 2.0  # m/cycle: what a hurried touch of a ball not placed for it gives (not the 2.7 most)
+
+
+def win_the_ball(ball: tuple[float, float], why: str) -> Decision:
+    """Go for a ball an opponent has and play it the moment it is in reach, in one request.
+
+    Intercepting first and deciding then would give the opponent the cycles our decision and
+    action need to see the ball at our feet: the action's kick skills approach the ball
+    themselves. In our half: clear it long towards the wing; in theirs: take it towards the goal.
+    """
+    if ball[0] < 0.0:
+        x = min(30.0, round((ball[0] + 35.0) / 10.0) * 10.0)  # on a 10 m grid: one request, not one a cycle
+        target = point(x, 25.0 if ball[1] >= 0 else -25.0)
+        return Decision("pass", act.Pass(target=target, power=100.0), why + ": win it and clear it")
+    target = point(FIELD_HALF_LENGTH - 8.0, 0.0)
+    return Decision("dribble", act.Dribble(target=target, speed=70.0), why + ": win it and go")
+
+
+def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
+    """Our set piece: one touch only, so shoot, pass (backwards if need be), or kick long into their half."""
+    ball = xy(state.ball.positioning) if state.ball and state.ball.positioning else me
+    if dist(ball, GOAL) <= SHOOT_RANGE:
+        target, _ = shot_margin(state, ball)  # the corner the keeper is furthest from
+        return Decision("shoot", act.Shoot(target=point(*target), power=100.0), "set piece near goal")
+    choice = best_pass(state, ball)
+    if choice is not None:
+        return pass_to(choice, "set piece")
+    target = point(min(FIELD_HALF_LENGTH - 10.0, me[0] + 35.0), me[1] * 0.5)
+    return Decision("pass", act.Pass(target=target, power=100.0), "set piece: kick long")
+
+
+def best_shot(state: WorldState, ball: tuple[float, float]) -> tuple[float, float] | None:
+    """The point in the goal a shot reaches before any opponent can stop it (the widest margin), if any."""
+    if dist(ball, GOAL) > SHOT_RANGE:
+        return None
+    target, margin = shot_margin(state, ball)
+    return target if margin > 0 else None
+
+
+def shot_margin(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[float, float], int]:
+    """The point in the goal with the widest margin (cycles between the ball crossing the line and
+    the first opponent who could stop it; negative: stopped first), and that margin.
+
+    When every line is blocked, the one the goalkeeper reaches last: a blocked shot may still get
+    through, and the block is hard to foresee, the keeper's reach less so.
+    """
+    _, opponents = sides(state)
+    keepers = [o for o in opponents if o[1]]
+    best, best_key, best_margin = (FIELD_HALF_LENGTH + 1.0, 0.0), (-1, 0, 0.0), -reach.HORIZON
+    half_goal = FIELD.goal_width / 2 - 0.8
+    for y in (-half_goal, -half_goal / 2, 0.0, half_goal / 2, half_goal):
+        target = (FIELD_HALF_LENGTH + 1.0, y)
+        path = reach.kicked_path(ball, target, SHOT_SPEED)
+        arrive = next((n for n, (x, _) in enumerate(path, start=1) if x >= FIELD_HALF_LENGTH), None)
+        if arrive is None:
+            continue
+        margin, keeper = (
+            reach.HORIZON if stopped is None else stopped - arrive
+            for stopped in (reach.first_cycles(path[:arrive], group) for group in (opponents, keepers))
+        )
+        away = min((dist(target, pos) for pos, _ in keepers), default=0.0)  # ties: further from him
+        key = (max(margin, 0), keeper, away)
+        if key > best_key:
+            best, best_key, best_margin = target, key, margin
+    return best, best_margin
+
+
+@dataclass(frozen=True)
+class PassChoice:
+    number: int
+    target: tuple[float, float] | None  # None: to the team-mate's feet
+    gain: float  # metres up the field from the ball to where it is received
+
+
+def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1e9) -> PassChoice | None:
+    """The best pass a team-mate receives SAFE_MARGIN cycles before any opponent could, gaining ``min_gain``.
+
+    Targets are team-mates' feet and points ahead of them (through balls); the score is how far
+    up the field the ball is received, plus a little for time to spare.
+    """
+    mates, opponents = sides(state)
+    best, best_score = None, -1e9
+    for number, here in mates:
+        leads = (0.0, 5.0, 10.0) if here[0] > ball[0] - 5.0 else (0.0,)
+        for lead in leads:
+            target = (min(FIELD_HALF_LENGTH - 3.0, here[0] + lead), here[1])
+            d = dist(ball, target)
+            if not 4.0 <= d <= 40.0:
+                continue
+            path = reach.kicked_path(ball, target, reach.pass_speed(d))
+            ours = reach.first_cycles(path, [(pos, False) for n, pos in mates])
+            if ours is None:
+                continue
+            theirs = reach.first_cycles(path, opponents)
+            spare = reach.HORIZON if theirs is None else theirs - ours
+            if spare < SAFE_MARGIN:
+                continue
+            received = path[ours - 1]
+            if received[0] - ball[0] < min_gain:
+                continue
+            score = received[0] + 0.5 * min(spare, 6) - 0.3 * abs(received[1]) * (received[0] > 30.0)
+            if score > best_score:
+                best, best_score = PassChoice(number, target if lead else None, received[0] - ball[0]), score
+    return best
+
+
+def space_ahead(
+    state: WorldState,
+    me: tuple[float, float],
+    towards: tuple[float, float],
+    near: float = 2.5,
+    ahead: float = 6.0,
+    cone: float = 60.0,
+) -> bool:
+    """No opponent within ``near``, nor within ``ahead`` and ``cone`` degrees of the way towards ``towards``."""
+    heading = math.atan2(towards[1] - me[1], towards[0] - me[0])
+    for pos, _ in sides(state)[1]:
+        d = dist(me, pos)
+        off = abs(math.remainder(math.atan2(pos[1] - me[1], pos[0] - me[0]) - heading, math.tau))
+        if d < near or (d < ahead and off < math.radians(cone)):
+            return False
+    return True
+
+
+def dribble_speed(state: WorldState, me: tuple[float, float], towards: tuple[float, float]) -> float:
+    """Full speed (the ball pushed further ahead) on an open run; else close control.
+
+    An open run: nobody within OPEN_NEAR, nor within OPEN_AHEAD and 45 degrees of the way. A
+    dribbler at close control moves at about two thirds of a runner's pace and is caught from behind.
+    """
+    if space_ahead(state, me, towards, OPEN_NEAR, OPEN_AHEAD, 45.0):
+        return 100.0
+    return 70.0
+
+
+def dribble_room(state: WorldState, me: tuple[float, float]) -> tuple[float, float] | None:
+    """A point 10 m away, towards the goal or up to 60 degrees off it, with space on the way (the straightest).
+
+    In our own third only straight ahead: beating a man there risks a goal.
+    """
+    toward = math.atan2(GOAL[1] - me[1], GOAL[0] - me[0])
+    for off in (0.0,) if me[0] < -FIELD_HALF_LENGTH / 3 else (0.0, 30.0, -30.0, 60.0, -60.0):
+        heading = toward + math.radians(off if me[1] <= 0 else -off)  # try the middle of the field first
+        x = min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0 * math.cos(heading))
+        y = max(-FIELD.width / 2 + 3.0, min(FIELD.width / 2 - 3.0, me[1] + 10.0 * math.sin(heading)))
+        if dist(me, (x, y)) > 4.0 and space_ahead(state, me, (x, y)):
+            return (x, y)
+    return None
+
+
+def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
+    """What the player with the ball at his feet does with it (the order is in policy.py's docstring)."""
+    mode = play_mode(state)
+    if mode in OUR_SET_PIECES:
+        return set_piece_kick(state, me)
+    ball = xy(state.ball.positioning) if state.ball and state.ball.positioning else me
+    shot = best_shot(state, ball)
+    if shot is not None:
+        return Decision("shoot", act.Shoot(target=point(*shot), power=100.0), "a free shot")
+    safe = best_pass(state, ball)
+    if safe is not None and safe.gain >= 10.0:
+        return pass_to(safe, "forward pass")
+    space = dribble_room(state, me)
+    speed = dribble_speed(state, me, space) if space is not None else 0.0
+    if speed >= 100.0:
+        return Decision("dribble", act.Dribble(target=point(*space), speed=speed), "open run: carry it fast")
+    if me[0] < 0.0:
+        # In our half without a forward pass or an open run: clear it. Against real teams a short
+        # pass or a dribble there reached a team-mate about one time in six and left the ball where
+        # it was (docs/decision.md): if it is lost, lose it far from our goal.
+        aim, _ = best_clearance(state, ball)
+        return Decision("pass", act.Pass(target=point(*aim), power=100.0), "clear the ball")
+    if dist(ball, GOAL) <= LONG_SHOT_RANGE:
+        # Near their goal every other way was lost nearly every time: a shot at least may go in.
+        target, _ = shot_margin(state, ball)
+        return Decision("shoot", act.Shoot(target=point(*target), power=100.0), "a hopeful shot")
+    aim, kept = best_clearance(state, ball)
+    if kept:
+        # A close-control dribble here kept the ball about one time in ten (docs/decision.md).
+        return Decision("pass", act.Pass(target=point(*aim), power=100.0), "kick it into space for a team-mate")
+    if space is not None:
+        return Decision("dribble", act.Dribble(target=point(*space), speed=speed), "space ahead: carry it")
+    if safe is not None:
+        return pass_to(safe, "safe pass")
+    goal_ward = point(min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0), me[1] * 0.7)
+    return Decision("dribble", act.Dribble(target=goal_ward, speed=70.0), "pressed: take it on")
+
+
+def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[float, float], bool]:
+    """Where to aim a ball kicked as hard as possible: of the ways a team-mate reaches first
+    (if any, else of all), the one on which the ball is met furthest from our goal; and whether
+    a team-mate reaches it first.
+
+    A fixed aim (long to the near wing) went to the forward pressing the kicker about half
+    the time against real teams and was lost 10 m from where it was kicked (docs/decision.md).
+    A ball that crosses the touch line first is lost where it crosses (their throw-in).
+    """
+    mates, opponents = sides(state)
+    ours_all = [(pos, False) for _, pos in mates]
+    ways = []
+    for degrees in CLEAR_ANGLES:
+        heading = math.radians(degrees)
+        target = (ball[0] + CLEAR_AIM * math.cos(heading), ball[1] + CLEAR_AIM * math.sin(heading))
+        path = reach.kicked_path(ball, target, CLEAR_SPEED)
+        inside = next((n for n, (_, y) in enumerate(path) if abs(y) > FIELD.width / 2), len(path))
+        path = path[: max(1, inside)]
+        ours, theirs = reach.first_cycles(path, ours_all), reach.first_cycles(path, opponents)
+        kept = ours is not None and (theirs is None or theirs - ours >= SAFE_MARGIN)
+        met = path[(ours if kept else theirs or len(path)) - 1]
+        ways.append(((kept, met[0], -abs(degrees)), target))
+    (kept, _, _), best = max(ways, key=lambda way: way[0])  # the first of equals, as the angles go
+    return best, kept
+
+
+def pass_to(choice: PassChoice, why: str) -> Decision:
+    """The pass request for ``choice``: to the team-mate's feet, or to a point ahead of him."""
+    if choice.target is None:
+        action = act.Pass(to=Player(player_number=choice.number, which_team=Team.OUR))
+    else:
+        action = act.Pass(target=point(*choice.target))
+    return Decision("pass", action, f"{why} to team-mate {choice.number}")
