@@ -20,7 +20,8 @@ What it does, in order:
   somebody else has touched it (the rules forbid the taker a second touch);
 - the team-mate chosen to go for the ball (fastest to it; ties to the lower
   number) intercepts; in our half, when an opponent has the ball, the second
-  fastest presses too; the others hold their formation position, shifted
+  fastest presses too; any other player within tackling reach of an opponent's
+  ball goes for it too; the others hold their formation position, shifted
   with the ball, facing the ball.
 """
 
@@ -44,6 +45,8 @@ from .without_ball import (
     second_fastest,
     tired,
 )
+
+TACKLE_REACH = 2.0  # m: rcssserver's tackle_dist, the furthest a tackle reaches ahead of the body
 
 
 def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int], may_touch: bool = True) -> Decision:
@@ -80,6 +83,10 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
     if may_touch and ball[0] < 0.0 and contested and second_fastest(number, my_eta, claims):
         return win_the_ball(ball, f"press the opponent on the ball ({my_eta} cycles)")
+    if may_touch and contested and dist(me_pos, ball) <= TACKLE_REACH:
+        # Whoever is this close to an opponent's ball has a tackle: the skill takes it when it is
+        # near-sure (else closes in). Markers and holders used to let such balls go by.
+        return win_the_ball(ball, "an opponent's ball within tackling reach")
     if role in (Role.DEFENDER, Role.MIDFIELDER) and ball[0] < MARK_BALL_X and their_ball(state, ball):
         mark = marking(state, team_size, ball).get(number)
         if mark is not None:

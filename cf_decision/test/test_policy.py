@@ -242,6 +242,17 @@ def test_when_they_have_the_ball_defenders_and_midfielders_mark_goal_side():
     assert "mark" not in decide(ours, 3, 11, {7: 0, 3: 20}).why  # our ball: keep the shape
 
 
+def test_any_player_within_tackling_reach_of_an_opponents_ball_goes_for_it():
+    holder, runner = opp(9, -30.0, 0.0), opp(10, -40.0, 6.0)
+    close = state((-32.3, 0.5), ball=(-30.8, 0.0), players=[holder, runner], number=3)
+    d = decide(close, 3, 11, {7: 1, 4: 2, 3: 5})  # neither the fastest nor the second
+    assert d.method == "pass" and "tackling reach" in d.why  # the kick skill's approach tackles
+    further = state((-34.0, 0.5), ball=(-30.8, 0.0), players=[holder, runner], number=3)
+    assert "tackling reach" not in decide(further, 3, 11, {7: 1, 4: 2, 3: 5}).why
+    loose = state((-32.3, 0.5), ball=(-30.8, 0.0), players=[runner], number=3)
+    assert "tackling reach" not in decide(loose, 3, 11, {7: 1, 4: 2, 3: 5}).why
+
+
 def test_a_tired_player_walks_to_its_spot():
     st = state((-5.0, 20.0), ball=(30.0, 0.0), number=4)
     fresh = decide(st, 4, 11, {9: 1})

@@ -274,9 +274,19 @@ def _chase_ball(world: World, me: SimPlayer) -> Step:
 
 
 class Intercept(Skill):
+    """Get to the ball; if an opponent has it at his feet first, tackle it towards (x, y) when near-sure."""
+
     name = "intercept"
 
+    def __init__(self, x: float, y: float):
+        super().__init__()
+        self.x, self.y = x, y
+
     def _step(self, world: World, me: SimPlayer) -> Step:
+        if distance(me.x, me.y, world.ball.x, world.ball.y) > world.params.kickable_distance:
+            tackle = _tackle_for(world, me, self.x, self.y)
+            if tackle is not None:
+                return tackle
         return _chase_ball(world, me)
 
 
@@ -388,7 +398,7 @@ def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> S
     if isinstance(action, act.TurnToObject):
         return TurnTo(target=_object_position(action.obj, side, world))
     if isinstance(action, act.Intercept):
-        return Intercept()
+        return Intercept(*opp_goal)
     if isinstance(action, act.Dribble):
         return Dribble(*_absolute(side, action.target.x, action.target.y), action.speed)
     if isinstance(action, act.Shoot):

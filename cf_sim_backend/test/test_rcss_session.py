@@ -306,8 +306,13 @@ def _text(msg) -> str:
 
 
 def test_at_most_one_well_formed_body_command_per_cycle_over_a_whole_trace():
-    skills: list[Skill] = [TwoBodyCommands(), MoveTo(-20.0, 10.0, 80.0), Intercept(), KickTo("shoot", 52.5, 0.0, None)]
-    skills += [Intercept() for _ in range(20)]
+    skills: list[Skill] = [
+        TwoBodyCommands(),
+        MoveTo(-20.0, 10.0, 80.0),
+        Intercept(52.5, 0.0),
+        KickTo("shoot", 52.5, 0.0, None),
+    ]
+    skills += [Intercept(52.5, 0.0) for _ in range(20)]
     sent, session = replay_acting(skills)
     commands = [c for cycle in sent.values() for c in cycle]
     assert len(sent) > 900 and len(commands) > 300

@@ -166,6 +166,24 @@ def test_a_tackle_hits_by_rcssservers_odds_and_holds_the_tackler():
     assert skill.step(far.world, me).commands[0][0] != "tackle"
 
 
+def test_an_intercept_tackles_a_ball_an_opponent_holds_towards_their_goal():
+    for side in (Side.LEFT, Side.RIGHT):
+        body = 0.0 if side is Side.LEFT else 180.0
+        sim = sim_with((side, 2, 0.0, 0.0, body), (side.other, 3, 2.0 * side.sign, 0.0, body + 180.0))
+        w = sim.world
+        w.ball.x = 1.2 * side.sign  # in front of me; the opponent has it at his feet
+        skill, me = skill_of(sim, side, 2, exec_("intercept", "", 2))
+        step = skill.step(w, me)
+        assert step.commands[0][0] == "tackle" and step.commands[0][1] == pytest.approx(0.0, abs=1e-6)
+        sim.command(side, 2, *step.commands[0])
+        sim.step()
+        assert w.ball.vx * side.sign > 1.0  # on its way to their goal
+    loose = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0), (Side.RIGHT, 3, 9.0, 0.0, 180.0))
+    loose.world.ball.x = 1.2  # nobody else on it: the intercept just goes for it
+    skill, me = skill_of(loose, Side.LEFT, 2, exec_("intercept", "", 2))
+    assert skill.step(loose.world, me).commands[0][0] != "tackle"
+
+
 def test_a_pass_from_a_ball_beside_the_body_is_laid_in_front_first_and_leaves_faster():
     def pass_from_the_side(collect: bool) -> tuple[list[str], float]:
         sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0))
