@@ -550,9 +550,33 @@ def test_the_head_sweep_allows_for_the_bodys_turn_in_the_same_cycle():
     session.receive(b"(sense_body 40 (head_angle 0) (kick 2) (dash 7) (turn 0) (move 1))")
     b = session.belief
     b.me.localised = b.see_time = 40
-    b.ball = Track(10.0, 0.0, 0.0, 0.0, 0.1, 40)  # straight ahead (server frame)
+    b.ball = Track(20.0, 0.0, 0.0, 0.0, 0.1, 40)  # straight ahead (server frame), too far for the narrow view
     session.start(TurnTo(heading=60.0))
     turn, neck = session.act().commands
     body = float(turn[len("(turn ") : -1])  # standing still: the body turns by the whole moment
     head = body + b.me.neck + float(neck[len("(turn_neck ") : -1])
     assert abs(body) > 30.0 and abs(abs(head) - 40.0) < 1.0  # still 40 degrees off the ball
+
+
+def test_near_the_ball_the_view_narrows_to_a_see_every_cycle_and_the_head_keeps_the_ball_inside_it():
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 play_on)\0")
+    session.receive(b"(sense_body 40 (view_mode high normal) (head_angle 0) (kick 2) (dash 7) (turn 0) (move 1))")
+    b = session.belief
+    b.me.localised = b.see_time = 40
+    b.ball = Track(8.0, 8.0, 0.0, 0.0, 0.1, 40)  # 11 m off, 45 degrees off our body: between the two widths
+    assert not any("change_view" in c for c in session.act().commands)
+    b.time = 41
+    b.ball = Track(6.0, 6.0, 0.0, 0.0, 0.1, 40)  # 8.5 m: watch it every cycle
+    view, neck = session.act().commands
+    assert view == "(change_view narrow)" and well_formed(view)
+    head = b.me.neck + float(neck[len("(turn_neck ") : -1])
+    assert abs(abs(45.0 - head) - 15.0) < 1.0  # 15 degrees inside the 60-degree cone, not 40 (out of it)
+    assert session.act().commands == []  # once a cycle
+    session.receive(b"(sense_body 42 (view_mode high narrow) (head_angle 0) (kick 2) (dash 7) (turn 0) (move 1))")
+    assert b.me.view_width == "narrow" and b.expects_see()  # a see every cycle now
+    b.ball = Track(9.0, 9.0, 0.0, 0.0, 0.1, 40)  # 12.7 m: inside the gap, stays narrow
+    assert not any("change_view" in c for c in session.act().commands)
+    b.time = 43
+    b.ball = Track(20.0, 20.0, 0.0, 0.0, 0.1, 40)  # far: the wider cone, every other cycle
+    assert session.act().commands[0] == "(change_view normal)"

@@ -109,6 +109,7 @@ COMMAND_GRAMMAR = {
     "kick": rf"\(kick {_NUM} {_NUM}\)",
     "turn_neck": rf"\(turn_neck {_NUM}\)",
     "catch": rf"\(catch {_NUM}\)",
+    "change_view": r"\(change_view (narrow|normal|wide)\)",
     "tackle": rf"\(tackle {_NUM}\)",
     "say": r'\(say "[A-Za-z0-9 ().+*/?<>_-]{1,10}"\)',
     "done": r"\(done\)",

@@ -22,6 +22,10 @@ from cf_sim_backend.world import norm_deg
 _EXECUTED = ("kick", "dash", "turn", "move", "catch", "tackle")  # sense_body counters of body commands
 _BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "kick", "catch", "tackle"})
 SCAN_OFFSET = 40.0  # degrees the head looks off the ball: the view cone (120 at normal width) keeps it in sight
+SCAN_MARGIN = 15.0  # degrees the ball stays inside the cone's edge, whatever the width
+HALF_VIEW = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}  # degrees each side of the head (synch see, v18+)
+NARROW_WITHIN = 10.0  # m: a ball this close is watched every cycle (narrow view), not every other one
+NORMAL_BEYOND = 13.0  # m: and back to normal width past this (a gap, so a ball about 10 m off does not flip it)
 NECK_LIMIT = 90.0  # rcssserver's maxneckang (and -minneckang)
 _SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
 
@@ -83,6 +87,8 @@ class PlayerSession:
     _scan_see: int = field(default=-1, init=False)  # the see the head's scan last swung at
     _scan_side: int = field(default=1, init=False)
     _necked: int = field(default=-1, init=False)  # the last cycle a turn_neck went out
+    _viewed: int = field(default=-1, init=False)  # the last cycle a change_view went out
+    view: str = "normal"  # the view width the next see comes with (asked for; the server confirms in sense_body)
 
     def __post_init__(self) -> None:
         self.belief = Belief(self.team, self.goalie)
@@ -132,6 +138,30 @@ class PlayerSession:
             self.stats[key] = self.stats.get(key, 0) + 1
             self.unexecuted = [*self.unexecuted[-9:], f"{kind} sent at {sent_at} ({mode})"]
 
+    def _look(self) -> list[str]:
+        """This cycle's head and eye commands: the view width, then where the head points."""
+        return self._view() + self._scan()
+
+    def _view(self) -> list[str]:
+        """The change_view for the ball's distance: narrow (a see every cycle, a 60 degree cone) near it.
+
+        Near the ball every cycle counts: at normal width every other cycle's ball is a guess, and
+        an opponent's dribble changes it unseen, so a contested ball looked kickable when it was
+        not, or the other way round. Further off, the wider cone every other cycle sees more players.
+        """
+        b, me = self.belief, self.belief.me
+        if self._viewed == b.time:
+            return []  # asked already this cycle
+        self.view = me.view_width if me.view_width in HALF_VIEW else "normal"
+        if me.localised < 0 or b.mode == "before_kick_off":
+            return []
+        d = math.hypot(b.ball.x - me.x, b.ball.y - me.y) if b.ball is not None else math.inf
+        want = "narrow" if d <= NARROW_WITHIN else "normal" if d > NORMAL_BEYOND else self.view
+        if want == self.view:
+            return []
+        self._viewed, self.view = b.time, want
+        return [f"(change_view {want})"]
+
     def _scan(self) -> list[str]:
         """The turn_neck that points the head for the next see: the view cone sweeps the field.
 
@@ -151,7 +181,8 @@ class PlayerSession:
             body = norm_deg(body + pending[2][0])
         if b.ball is not None:
             to_ball = math.degrees(math.atan2(b.ball.y - me.y, b.ball.x - me.x))
-            target = norm_deg(to_ball + self._scan_side * SCAN_OFFSET - body)
+            offset = min(SCAN_OFFSET, HALF_VIEW.get(self.view, 60.0) - SCAN_MARGIN)
+            target = norm_deg(to_ball + self._scan_side * offset - body)
         else:
             target = self._scan_side * NECK_LIMIT
         neck = max(-NECK_LIMIT, min(NECK_LIMIT, target))
@@ -178,7 +209,7 @@ class PlayerSession:
         if not self.ready or b.mode == "time_over":
             return Acted()  # (after time over the server executes nothing: a command then is only noise)
         if self.skill is None or self.acted == b.time:
-            return Acted(self._scan())
+            return Acted(self._look())
         if b.ball is None and self.skill.name in _BALL_SKILLS:
             # The last see showed that the ball is not where we believed: do not play a ball we
             # cannot place (the decision, told, looks for it).
@@ -187,7 +218,7 @@ class PlayerSession:
         world = b.world()
         me = world.player(b.side, b.number)
         if me.frozen > 0:
-            return Acted(self._scan())  # a tackle holds us: the server would ignore any body command
+            return Acted(self._look())  # a tackle holds us: the server would ignore any body command
         step = self.skill.step(world, me)
         out, body_sent = [], False
         for cmd in step.commands:
@@ -205,6 +236,7 @@ class PlayerSession:
         if body_sent:
             self.acted = b.time
             self.stats["body_commands"] += 1
+        out += self._view()
         if any(text.startswith("(turn_neck") for text in out):
             self._necked = b.time
         else:
