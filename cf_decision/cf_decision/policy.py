@@ -20,9 +20,9 @@ What it does, in order:
   somebody else has touched it (the rules forbid the taker a second touch);
 - the team-mate chosen to go for the ball (fastest to it; ties to the lower
   number) intercepts; in our half, when an opponent has the ball, the second
-  fastest presses too; any other player within tackling reach of an opponent's
-  ball goes for it too; the others hold their formation position, shifted
-  with the ball, facing the ball.
+  fastest stands in his way to our goal, facing the ball; any player within
+  tackling reach of an opponent's ball goes for it; the others hold their
+  formation position, shifted with the ball, facing the ball.
 """
 
 from __future__ import annotations
@@ -37,6 +37,7 @@ from .with_ball import win_the_ball, with_ball
 from .without_ball import (
     MARK_BALL_X,
     NEVER,
+    block,
     choose_interceptor,
     cycles_to_ball,
     goal_side,
@@ -81,12 +82,12 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         if contested:
             return win_the_ball(ball, f"fastest to a contested ball ({my_eta} cycles)")
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
-    if may_touch and ball[0] < 0.0 and contested and second_fastest(number, my_eta, claims):
-        return win_the_ball(ball, f"press the opponent on the ball ({my_eta} cycles)")
     if may_touch and contested and dist(me_pos, ball) <= TACKLE_REACH:
         # Whoever is this close to an opponent's ball has a tackle: the skill takes it when it is
         # near-sure (else closes in). Markers and holders used to let such balls go by.
         return win_the_ball(ball, "an opponent's ball within tackling reach")
+    if may_touch and ball[0] < 0.0 and contested and second_fastest(number, my_eta, claims):
+        return block(me_pos, ball, f"cover the opponent on the ball ({my_eta} cycles)", tired(state))
     if role in (Role.DEFENDER, Role.MIDFIELDER) and ball[0] < MARK_BALL_X and their_ball(state, ball):
         mark = marking(state, team_size, ball).get(number)
         if mark is not None:

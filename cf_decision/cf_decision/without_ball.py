@@ -1,4 +1,4 @@
-"""The players without the ball (ROS-free): who goes for it, who presses, who marks whom, and
+"""The players without the ball (ROS-free): who goes for it, who covers, who marks whom, and
 where the others stand.
 """
 
@@ -17,6 +17,7 @@ MARK_RADIUS = 15.0  # m from a defender's or midfielder's formation spot: oppone
 MARK_DISTANCE = 1.5  # m goal-side of the marked opponent
 TIRED = 0.45  # stamina share
 MARK_BALL_X = 15.0  # mark while their ball is short of this x (deeper in their half: keep the shape)
+BLOCK_DISTANCE = 3.0  # m from an opponent's ball towards our goal: where the covering player waits for it
 
 
 def cycles_to_ball(me: tuple[float, float], ball: tuple[float, float], velocity=None) -> int:
@@ -82,17 +83,34 @@ def goal_side(mark: tuple[float, float]) -> tuple[float, float]:
     )
 
 
+def block(me: tuple[float, float], ball: tuple[float, float], why: str, tired: bool = False) -> Decision:
+    """Stand BLOCK_DISTANCE from an opponent's ball on its way to our goal, facing it.
+
+    A chaser from behind never gets the ball in front of his body, where a tackle reaches; a
+    player in the dribbler's way does, when the dribbler comes within tackling reach of him.
+    """
+    d = dist(ball, OWN_GOAL) or 1.0
+    k = min(BLOCK_DISTANCE, d / 2) / d
+    spot = (ball[0] + (OWN_GOAL[0] - ball[0]) * k, ball[1] + (OWN_GOAL[1] - ball[1]) * k)
+    return hold(me, spot, why, 1.0, tired, hurry=True)
+
+
 def tired(state: WorldState) -> bool:
     """Below TIRED of its stamina a player walks to its spot: under rcssserver's 30 % it recovers slower for good."""
     return state.me is not None and state.me.stamina is not None and state.me.stamina < TIRED
 
 
 def hold(
-    me: tuple[float, float], spot: tuple[float, float], why: str, slack: float = 3.0, tired: bool = False
+    me: tuple[float, float],
+    spot: tuple[float, float],
+    why: str,
+    slack: float = 3.0,
+    tired: bool = False,
+    hurry: bool = False,
 ) -> Decision:
-    """Go to ``spot`` (fast when far, unless ``tired``), or, within ``slack`` of it, watch the ball."""
+    """Go to ``spot`` (fast when far or in a ``hurry``, unless ``tired``), or, within ``slack`` of it, watch the ball."""
     d = dist(me, spot)
     if d > slack:
-        speed = 40.0 if tired else 100.0 if d > 8.0 else 70.0
+        speed = 40.0 if tired else 100.0 if hurry or d > 8.0 else 70.0
         return Decision("moveTo", act.MoveTo(target=point(*spot), speed=speed), why)
     return Decision("turnToObject", act.TurnToObject(obj=Ball()), why + ", watch the ball")

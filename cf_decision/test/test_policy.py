@@ -216,11 +216,16 @@ def test_near_their_goal_with_nothing_better_shoot_away_from_the_keeper():
     assert corner.method == "shoot" and corner.action.target.y > 0.0  # a set piece's shot: away from him too
 
 
-def test_in_our_half_the_second_fastest_presses_an_opponent_on_the_ball():
+def test_in_our_half_the_second_fastest_covers_the_way_from_an_opponents_ball_to_our_goal():
     players = [opp(9, -20.5, 0.0)]
-    press = decide(state((-15.0, 5.0), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})
-    # One request: go for it and clear it the moment it is in reach (the kick skill approaches).
-    assert press.method == "pass" and "press" in press.why and press.action.target.y == 25.0
+    cover = decide(state((-15.0, 5.0), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})
+    # Not after the ball (a chaser from behind never has it in front of him): in its way to our goal.
+    assert cover.method == "moveTo" and "cover" in cover.why and cover.action.speed == 100.0
+    assert (cover.action.target.x, cover.action.target.y) == (-23.0, 0.0)  # 3 m towards our goal
+    there = decide(state((-23.5, 0.5), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})
+    assert there.method == "turnToObject" and "cover" in there.why  # waits for him, facing the ball
+    close = decide(state((-21.5, 0.5), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})
+    assert close.method == "pass" and "tackling reach" in close.why  # he came to him: tackle (or close in)
     hold = decide(state((-15.0, 5.0), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 5: 4, 6: 7})
     assert hold.method not in ("intercept", "pass")  # third fastest: holds
     loose = decide(state((-15.0, 5.0), ball=(-20.0, 0.0)), 6, 11, {4: 3, 6: 7})
