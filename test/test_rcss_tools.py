@@ -8,7 +8,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from rcss_ball_use import ball_use, reason, table, territory, territory_table
-from rcss_series import match_stats, read_rcg
+from rcss_series import again, match_stats, read_rcg
 
 
 def show(t: int, ball_x: float, kicks: dict[tuple[str, int], int], where: dict[tuple[str, int], float]) -> str:
@@ -76,3 +76,33 @@ def test_where_each_team_had_the_ball_and_won_it_back_by_third_of_the_field(tmp_
     assert where["them"].held == [0, 10, 2] and where["them"].won == [0, 1, 0]  # past x=17.5: their third
     text = territory_table(where, "PYRUS")
     assert "| us | 0% | 33% | 0% | 0 | 0 | 0 |" in text and "| PYRUS | 0% | 56% | 11% | 0 | 1 | 0 |" in text
+
+
+def test_tackles_and_idle_cycles_at_the_ball_are_read_from_the_counters_and_state_bits(tmp_path, capsys):
+    """CF 9 has the ball at his feet for 4 cycles and kicks it in one; PYRUS 3 tackles twice, missing once."""
+
+    def player(side, n, x, state, kicks, tackles):
+        return f"(({side} {n}) 0 {state:#x} {x} 0 0 0 0 0 (v h 120) (s 8000 1 1 0) (c {kicks} 0 0 0 0 0 0 0 {tackles} 0 0))"
+
+    frames = [  # (ball x, CF 9 kicks, PYRUS 3 tackles, PYRUS 3 state)
+        (10.5, 0, 0, 0x1),
+        (10.5, 0, 0, 0x1),  # idle: the ball 0.5 m from him, no kick
+        (10.5, 0, 1, 0x1001),  # idle again; PYRUS 3's tackle hits
+        (15.0, 1, 1, 0x1),  # he kicked it away
+        (15.0, 1, 2, 0x2001),  # the ball gone; PYRUS 3's second tackle missed
+        (15.0, 1, 2, 0x1),
+    ]
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t, (ball, kicks, tackles, state) in enumerate(frames, start=1):
+        ours, theirs = player("l", 9, 10.0, 0x1, kicks, 0), player("r", 3, 12.0, state, 0, tackles)
+        lines.append(f"(show {t} ((b) {ball} 0 0 0) {ours} {theirs})")
+    match = tmp_path / "match-1"
+    match.mkdir()
+    (match / "m.rcg").write_text("\n".join(lines) + "\n")
+    stats = match_stats(match / "m.rcg", "l")
+    assert stats["tackles"] == [[0, 0], [1, 2]]
+    assert stats["idle"] == [2, 3]  # of the 3 cycles with the ball at his feet (and a next cycle), 2 idle
+    row = {"n": 1, "score": [0, 0], "cpu_ms_per_cycle": 1.0, "relaunched": 0, "executed": 1.0}
+    (tmp_path / "series.json").write_text(__import__("json").dumps([row]))
+    assert again(tmp_path, "CF") == 0
+    assert "| 1 | 0:0 | 0:0 | 100%:0% | 0/0:1/2 | 67% of 3 |" in capsys.readouterr().out

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_series import GOAL_X, kick_events, read_rcg
+from rcss_series import GOAL_X, kick_events, read_rcg, side_of
 
 _DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
 _NUMBERS = re.compile(r"(?<![\w-])-?\d+(\.\d+)?")
@@ -61,22 +61,13 @@ def decisions(match: Path, team: str) -> dict[int, list[tuple[int, str]]]:
     return out
 
 
-def our_side(rcg: Path, team: str) -> str:
-    """'l' or 'r': the side the game log's (team ...) line gives ``team``."""
-    for line in rcg.read_text(errors="replace").splitlines():
-        if line.startswith("(team "):
-            words = line.strip("()").split()
-            return "l" if words[2] == team else "r"
-    return "l"
-
-
 @functools.lru_cache(maxsize=4)
 def game(match: Path, team: str) -> tuple[list, str, float]:
     """A match's frames (read once), our side, and +1 or -1: the way our attack goes along x."""
     rcg = next(iter(sorted(match.glob("*.rcg"))), None)
     if rcg is None:
         raise FileNotFoundError(f"no game log (*.rcg) in {match}")
-    side = our_side(rcg, team)
+    side = side_of(rcg, team)
     return read_rcg(rcg), side, 1.0 if side == "l" else -1.0
 
 

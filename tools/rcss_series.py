@@ -9,10 +9,14 @@ Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode 
 command; match n with the server's seed SEED+n). From each
 match's summary and game log (.rcg) it prints: the score, shots (kicks towards the opponent's
 goal from within 25 m of it), possession (cycles of play_on in which a player of that side was
-nearest the ball), offsides and faults (free kick, catch, back pass) called against each side,
+nearest the ball), tackles (hits of tries, each side), idle at the ball (of the play-on cycles in
+which a field player of ours had the ball within 0.9 m, the share in which he neither kicked nor
+tackled it), offsides and faults (free kick, catch, back pass) called against each side,
 our CPU per cycle, relaunches, and the share of our body commands the server
 executed; then the series' totals. The opponent is never part of this repository: build it
 beside it (see docs/rcssserver.md).
+
+    python tools/rcss_series.py --again DIR   # the table of a series played into DIR, read again
 """
 
 from __future__ import annotations
@@ -29,8 +33,15 @@ HERE = Path(__file__).resolve().parent
 GOAL_X = 52.5
 
 
-def read_rcg(path: Path) -> list[tuple[int, str, tuple[float, float], list[tuple[str, int, float, float, int]]]]:
-    """(time, play mode, ball, [(side, number, x, y, kicks so far)]) per show line of a game log (ULG5/6)."""
+TACKLE_FAULT = 0x2000  # a player's state bit in the game log: his tackle this cycle missed
+IDLE_REACH = 0.9  # m: a ball this close is surely kickable (the server's reach is 1.085, our skills' 0.98)
+
+
+def read_rcg(path: Path, counters: bool = False) -> list[tuple[int, str, tuple[float, float], list[tuple]]]:
+    """(time, play mode, ball, [(side, number, x, y, kicks so far)]) per show line of a game log (ULG5/6).
+
+    ``counters``: each player also carries (tackles so far, state bits).
+    """
     frames, mode = [], "before_kick_off"
     for line in path.read_text(errors="replace").splitlines():
         if line.startswith("(playmode "):
@@ -45,17 +56,45 @@ def read_rcg(path: Path) -> list[tuple[int, str, tuple[float, float], list[tuple
                 if len(words) < 6 or words[0] not in ("l", "r") or words[3] == "0":
                     continue  # (not a player, or one that never connected: state 0)
                 side, number, x, y = words[0], int(words[1]), float(words[4]), float(words[5])
-                kicks = int(words[words.index("c") + 1]) if "c" in words else 0
-                players.append((side, number, x, y, kicks))
+                c = words.index("c") + 1 if "c" in words else None
+                kicks = int(words[c]) if c else 0
+                if counters:  # (c kick dash turn catch move turn_neck change_view say tackle ...)
+                    tackles = int(words[c + 8]) if c and len(words) > c + 8 else 0
+                    players.append((side, number, x, y, kicks, tackles, int(words[3], 16)))
+                else:
+                    players.append((side, number, x, y, kicks))
             frames.append((t, mode, ball, players))
     return frames
+
+
+def contests(frames: list, our_side: str) -> dict:
+    """Tackles of each side (hits, tries), and how often a field player of ours with the ball within
+    IDLE_REACH in play on neither kicked nor tackled it (idle cycles, such cycles) (``read_rcg(..., counters=True)``)."""
+    tackles = {"l": [0, 0], "r": [0, 0]}
+    idle = [0, 0]
+    before: dict = {}
+    for i, (_, mode, (bx, by), players) in enumerate(frames):
+        now = {(p[0], p[1]): p for p in players}
+        for key, (side, number, x, y, kicks, tried, state) in now.items():
+            last = before.get(key)
+            if last is not None and tried > last[5]:
+                tackles[side][1] += 1
+                tackles[side][0] += not state & TACKLE_FAULT
+            at_ball = math.hypot(x - bx, y - by) <= IDLE_REACH
+            if side == our_side and number != 1 and mode == "play_on" and at_ball and i + 1 < len(frames):
+                after = next((p for p in frames[i + 1][3] if (p[0], p[1]) == key), None)
+                if after is not None:
+                    idle[1] += 1
+                    idle[0] += after[4] == kicks and after[5] == tried
+        before = now
+    return {"tackles": tackles, "idle": idle}
 
 
 def kick_events(frames: list) -> list[tuple[int, str, int, float, float]]:
     """(frame index, side, number, x, y) of every kick in ``read_rcg``'s frames, in order."""
     events, last = [], {}
     for i, (_, _, _, players) in enumerate(frames):
-        for side, number, x, y, kicks in players:
+        for side, number, x, y, kicks, *_ in players:
             if kicks > last.get((side, number), kicks):
                 events.append((i, side, number, x, y))
             last[(side, number)] = kicks
@@ -63,8 +102,8 @@ def kick_events(frames: list) -> list[tuple[int, str, int, float, float]]:
 
 
 def match_stats(rcg: Path, our_side: str) -> dict:
-    """Possession and shots of both sides from a game log."""
-    frames = read_rcg(rcg)
+    """Possession, shots, tackles, offsides and faults of both sides, and our idle cycles at the ball, from a game log."""
+    frames = read_rcg(rcg, counters=True)
     possession = {"l": 0, "r": 0}
     shots = {"l": 0, "r": 0}
     for _, mode, (bx, by), players in frames:
@@ -79,12 +118,24 @@ def match_stats(rcg: Path, our_side: str) -> dict:
     theirs = "r" if our_side == "l" else "l"
     total = max(1, possession["l"] + possession["r"])
     calls = referee_calls(rcg)
+    fights = contests(frames, our_side)
     return {
+        "tackles": [fights["tackles"][our_side], fights["tackles"][theirs]],
+        "idle": fights["idle"],
         "shots": [shots[our_side], shots[theirs]],
         "possession": [possession[our_side] / total, possession[theirs] / total],
         "offsides": [calls.get(f"offside_{our_side}", 0), calls.get(f"offside_{theirs}", 0)],
         "faults": [sum(n for k, n in calls.items() if k.endswith(f"fault_{s}")) for s in (our_side, theirs)],
     }
+
+
+def side_of(rcg: Path, team: str) -> str:
+    """'l' or 'r': the side the game log's (team ...) line gives ``team``."""
+    for line in rcg.read_text(errors="replace").splitlines():
+        if line.startswith("(team "):
+            words = line.strip("()").split()
+            return "l" if words[2] == team else "r"
+    return "l"
 
 
 def referee_calls(rcg: Path) -> dict[str, int]:
@@ -126,6 +177,7 @@ def play(args: argparse.Namespace, n: int) -> dict:
         "relaunched": summary.get("relaunched", 0),
         "executed": summary.get("executed_share", 0.0),
         "seconds": round(time.monotonic() - t0),
+        "side": side,
     }
     logs = sorted(out.glob("*.rcg"))
     if logs:
@@ -133,11 +185,59 @@ def play(args: argparse.Namespace, n: int) -> dict:
     return row
 
 
+HEADER = (
+    "| match | score | shots | possession | tackles hit/tried | idle at the ball | offsides | faults |"
+    " our CPU ms/cycle | relaunches | commands executed |\n"
+    "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+)
+
+
+def row_line(r: dict) -> str:
+    """One match's table row."""
+    n = r["n"]
+    if "error" in r:
+        return f"| {n} | failed: {r['error'][:300]} | | | | | | | | | |"
+    shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
+    off, faults = r.get("offsides", ["?", "?"]), r.get("faults", ["?", "?"])
+    (our_hit, our_try), (their_hit, their_try) = r.get("tackles", [[0, 0], [0, 0]])
+    idle, at_ball = r.get("idle", [0, 0])
+    return (
+        f"| {n} | {r['score'][0]}:{r['score'][1]} | {shots[0]}:{shots[1]} | {poss[0]:.0%}:{poss[1]:.0%} |"
+        f" {our_hit}/{our_try}:{their_hit}/{their_try} | {idle / max(1, at_ball):.0%} of {at_ball} |"
+        f" {off[0]}:{off[1]} | {faults[0]}:{faults[1]} | {r['cpu_ms_per_cycle']} | {r['relaunched']} |"
+        f" {r['executed']:.1%} |"
+    )
+
+
+def totals_line(rows: list[dict]) -> str:
+    played = [r for r in rows if "error" not in r]
+    goals = [sum(r["score"][0] for r in played), sum(r["score"][1] for r in played)]
+    won = sum(r["score"][0] > r["score"][1] for r in played)
+    lost = sum(r["score"][0] < r["score"][1] for r in played)
+    return f"series: {goals[0]}:{goals[1]} in {len(played)} matches; won {won}, drawn {len(played) - won - lost}, lost {lost}"
+
+
+def again(out: Path, team: str) -> int:
+    """The table of a series played before, its game logs read again (with this version's columns)."""
+    rows = json.loads((out / "series.json").read_text())
+    for r in rows:
+        logs = sorted((out / f"match-{r['n']}").glob("*.rcg"))
+        if "error" not in r and logs:
+            r |= match_stats(logs[-1], r.get("side") or side_of(logs[-1], team))
+    print(HEADER)
+    for r in rows:
+        print(row_line(r))
+    print("\n" + totals_line(rows))
+    return 0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--server", required=True, help="rcssserver binary")
-    ap.add_argument("--opponent", required=True, help="the opponent's team name")
-    ap.add_argument("--opponent-cmd", required=True, help="its start command ({team} {host} {port} filled in)")
+    ap.add_argument("--again", metavar="DIR", help="only print the table of the series played into DIR")
+    ap.add_argument("--team", default="CF", help="our team's name in the game logs (for --again)")
+    ap.add_argument("--server", help="rcssserver binary")
+    ap.add_argument("--opponent", help="the opponent's team name")
+    ap.add_argument("--opponent-cmd", help="its start command ({team} {host} {port} filled in)")
     ap.add_argument("--matches", type=int, default=5)
     ap.add_argument("--cycles", type=int, default=2000, help="match length (two halves)")
     ap.add_argument("--realtime", action="store_true")
@@ -145,37 +245,21 @@ def main() -> int:
     ap.add_argument("--out", default="rcss-series")
     ap.add_argument("--seed", type=int, default=0, help="match n gets the server's player-type seed SEED+n")
     args = ap.parse_args()
+    if args.again:
+        return again(Path(args.again), args.team)
+    if not (args.server and args.opponent and args.opponent_cmd):
+        ap.error("--server, --opponent and --opponent-cmd are needed to play a series")
     Path(args.out).mkdir(parents=True, exist_ok=True)
     print(
         f"our team v {args.opponent}: {args.matches} matches of {args.cycles} cycles, "
         f"{'real time' if args.realtime else 'synch mode'}\n"
     )
-    print(
-        "| match | score | shots | possession | offsides | faults | our CPU ms/cycle | relaunches | commands executed |"
-    )
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print(HEADER)
     rows = []
     for n in range(1, args.matches + 1):
-        r = play(args, n)
-        rows.append(r)
-        if "error" in r:
-            print(f"| {n} | failed: {r['error'][:300]} | | | | | | | |", flush=True)
-            continue
-        shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
-        off, faults = r.get("offsides", ["?", "?"]), r.get("faults", ["?", "?"])
-        print(
-            f"| {n} | {r['score'][0]}:{r['score'][1]} | {shots[0]}:{shots[1]} | {poss[0]:.0%}:{poss[1]:.0%} |"
-            f" {off[0]}:{off[1]} | {faults[0]}:{faults[1]} | {r['cpu_ms_per_cycle']} | {r['relaunched']} |"
-            f" {r['executed']:.1%} |",
-            flush=True,
-        )
-    played = [r for r in rows if "error" not in r]
-    goals = [sum(r["score"][0] for r in played), sum(r["score"][1] for r in played)]
-    won = sum(r["score"][0] > r["score"][1] for r in played)
-    lost = sum(r["score"][0] < r["score"][1] for r in played)
-    print(
-        f"\nseries: {goals[0]}:{goals[1]} in {len(played)} matches; won {won}, drawn {len(played) - won - lost}, lost {lost}"
-    )
+        rows.append(play(args, n))
+        print(row_line(rows[-1]), flush=True)
+    print("\n" + totals_line(rows))
     (Path(args.out) / "series.json").write_text(json.dumps(rows, indent=1))
     return 0
 
