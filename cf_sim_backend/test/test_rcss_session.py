@@ -542,14 +542,20 @@ def test_the_head_sweeps_round_the_ball_a_see_at_a_time_and_the_field_without_on
     assert sorted(heads[-2:]) == [-90, 90]
 
 
+def placed_session() -> PlayerSession:
+    """CF 3 on the left at cycle 40, placed on the field, the head straight, the view normal."""
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 play_on)\0")
+    session.receive(b"(sense_body 40 (view_mode high normal) (head_angle 0) (kick 2) (dash 7) (turn 0) (move 1))")
+    session.belief.me.localised = session.belief.see_time = 40
+    return session
+
+
 def test_the_head_sweep_allows_for_the_bodys_turn_in_the_same_cycle():
     from cf_sim_backend.skills import TurnTo
 
-    session = PlayerSession("CF")
-    session.receive(b"(init l 3 play_on)\0")
-    session.receive(b"(sense_body 40 (head_angle 0) (kick 2) (dash 7) (turn 0) (move 1))")
+    session = placed_session()
     b = session.belief
-    b.me.localised = b.see_time = 40
     b.ball = Track(20.0, 0.0, 0.0, 0.0, 0.1, 40)  # straight ahead (server frame), too far for the narrow view
     session.start(TurnTo(heading=60.0))
     turn, neck = session.act().commands
@@ -559,11 +565,8 @@ def test_the_head_sweep_allows_for_the_bodys_turn_in_the_same_cycle():
 
 
 def test_near_the_ball_the_view_narrows_to_a_see_every_cycle_and_the_head_keeps_the_ball_inside_it():
-    session = PlayerSession("CF")
-    session.receive(b"(init l 3 play_on)\0")
-    session.receive(b"(sense_body 40 (view_mode high normal) (head_angle 0) (kick 2) (dash 7) (turn 0) (move 1))")
+    session = placed_session()
     b = session.belief
-    b.me.localised = b.see_time = 40
     b.ball = Track(8.0, 8.0, 0.0, 0.0, 0.1, 40)  # 11 m off, 45 degrees off our body: between the two widths
     assert not any("change_view" in c for c in session.act().commands)
     b.time = 41
