@@ -104,5 +104,6 @@ def test_tackles_and_idle_cycles_at_the_ball_are_read_from_the_counters_and_stat
     assert stats["idle"] == [2, 3]  # of the 3 cycles with the ball at his feet (and a next cycle), 2 idle
     row = {"n": 1, "score": [0, 0], "cpu_ms_per_cycle": 1.0, "relaunched": 0, "executed": 1.0}
     (tmp_path / "series.json").write_text(__import__("json").dumps([row]))
+    assert again(tmp_path / "match-1", "CF") == 2  # no series there
     assert again(tmp_path, "CF") == 0
     assert "| 1 | 0:0 | 0:0 | 100%:0% | 0/0:1/2 | 67% of 3 |" in capsys.readouterr().out

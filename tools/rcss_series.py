@@ -219,6 +219,9 @@ def totals_line(rows: list[dict]) -> str:
 
 def again(out: Path, team: str) -> int:
     """The table of a series played before, its game logs read again (with this version's columns)."""
+    if not (out / "series.json").exists():
+        print(f"no series.json in {out}: no match of a series has ended there", file=sys.stderr)
+        return 2
     rows = json.loads((out / "series.json").read_text())
     for r in rows:
         logs = sorted((out / f"match-{r['n']}").glob("*.rcg"))
@@ -259,8 +262,8 @@ def main() -> int:
     for n in range(1, args.matches + 1):
         rows.append(play(args, n))
         print(row_line(rows[-1]), flush=True)
+        (Path(args.out) / "series.json").write_text(json.dumps(rows, indent=1))  # after each match: --again
     print("\n" + totals_line(rows))
-    (Path(args.out) / "series.json").write_text(json.dumps(rows, indent=1))
     return 0
 
 
