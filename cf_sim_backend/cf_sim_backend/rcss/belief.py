@@ -43,6 +43,7 @@ SELF_SIGMA_GROWTH = 0.1  # m per cycle without a see
 BALL_SIGMA_GROWTH = 0.2
 PLAYER_SIGMA_GROWTH = 0.4
 UNSURE = 50.0  # m: the sigma of a pose we know nothing about
+HALF_VIEW = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}  # degrees each side of the head (synch see, v18+)
 QUANT = 0.05  # relative distance error of moving objects (the server rounds log(distance) to 0.1)
 
 # rcssserver play modes the embedded simulator's names do not have, as the nearest of those.
@@ -351,7 +352,7 @@ class Belief:
         me = self.me
         d = math.hypot(track.x - me.x, track.y - me.y)
         close = float(self.server.get("visible_distance", 3.0)) - 0.5
-        half = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}.get(me.view_width, 60.0) - 10.0
+        half = HALF_VIEW.get(me.view_width, 60.0) - 10.0
         ahead = abs(norm_deg(math.degrees(math.atan2(track.y - me.y, track.x - me.x)) - me.head)) < half
         return me.sigma < 5.0 and (d < close or (ahead and 2.0 < d < 50.0))
 

@@ -14,7 +14,7 @@ import re
 from dataclasses import dataclass, field
 
 from cf_lang.errors import LanguageError
-from cf_sim_backend.rcss.belief import Belief
+from cf_sim_backend.rcss.belief import HALF_VIEW, Belief
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse
 from cf_sim_backend.skills import Command, Skill
 from cf_sim_backend.world import norm_deg
@@ -23,7 +23,6 @@ _EXECUTED = ("kick", "dash", "turn", "move", "catch", "tackle")  # sense_body co
 _BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "kick", "catch", "tackle"})
 SCAN_OFFSET = 40.0  # degrees the head looks off the ball: the view cone (120 at normal width) keeps it in sight
 SCAN_MARGIN = 15.0  # degrees the ball stays inside the cone's edge, whatever the width
-HALF_VIEW = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}  # degrees each side of the head (synch see, v18+)
 NARROW_WITHIN = 10.0  # m: a ball this close is watched every cycle (narrow view), not every other one
 NORMAL_BEYOND = 13.0  # m: and back to normal width past this (a gap, so a ball about 10 m off does not flip it)
 NECK_LIMIT = 90.0  # rcssserver's maxneckang (and -minneckang)
