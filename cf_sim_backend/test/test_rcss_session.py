@@ -229,6 +229,43 @@ def test_a_goal_makes_the_pose_unknown_until_the_next_see():
     assert b.me.sigma < 1.0
 
 
+
+def _pass_direction(b: Belief, true_velocity: tuple[float, float], to: tuple[float, float]) -> float:
+    """Where (degrees, server frame) the pass skill's kick really sends the ball, given its true velocity."""
+    session = PlayerSession("CF")
+    session.belief = b
+    b.me.localised = b.see_time = b.time
+    world = b.world()
+    session.start(KickTo("pass", to[0], -to[1], None, approach=False))  # the skills' frame: y mirrored
+    kick = next(parse(c) for c in session.act().commands if c.startswith("(kick"))
+    ax, ay = b._kick_accel(float(kick[1]), float(kick[2]))
+    vx, vy = true_velocity[0] + ax, true_velocity[1] + ay
+    assert world.ball is not None
+    return math.degrees(math.atan2(vy, vx))
+
+
+def test_a_ball_that_rolls_into_our_body_bounces_off_it_and_the_pass_still_goes_where_it_aims():
+    """rcssserver: a ball that ends a cycle overlapping a player is put against him, its velocity
+    times -0.1. A kick that took out the old velocity sent passes off by up to 120 degrees."""
+    b = _belief()
+    b.update(parse("(sense_body 10 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    b.update(parse(f"(see 10 {SEE_CENTRE} ((b) 1.2 0 -1 0))"))  # 1.2 m ahead, rolling at us at 1 m/cycle
+    b.update(parse("(sense_body 11 (view_mode high normal) (speed 0 0) (head_angle 0))"))  # no see this cycle
+    assert math.hypot(b.ball.x + 10.0, b.ball.y) == pytest.approx(0.385, abs=0.01)  # against us, not through us
+    assert (b.ball.vx, b.ball.vy) == pytest.approx((0.094, 0.0), abs=0.01)
+    aim = math.degrees(math.atan2(-15.0, 0.0))  # a team-mate 15 m to our left (server frame: -y)
+    assert abs(_pass_direction(b, (0.094, 0.0), (-10.0, -15.0)) - aim) < 5.0
+
+    # Seen against our body outside the view cone, where the see gives no velocity: it bounced too.
+    b = _belief()
+    b.update(parse("(sense_body 20 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
+    b.update(parse(f"(see 20 {SEE_CENTRE} ((b) 1.6 -70))"))
+    b.ball.vx, b.ball.vy = -0.3, 0.8  # rolling at us from the side, as believed: 0.74 m off after one cycle
+    b.update(parse("(sense_body 21 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
+    b.update(parse(f"(see 21 {SEE_CENTRE} ((b) 0.4 -70))"))  # 70 degrees off: outside the narrow cone
+    assert math.hypot(b.ball.vx, b.ball.vy) < 0.1
+    assert abs(_pass_direction(b, (0.03, -0.08), (0.0, 0.0)) - 0.0) < 5.0  # ahead, to (0, 0)
+
 # ---- the session: commands ------------------------------------------------------------
 
 
