@@ -229,7 +229,6 @@ def test_a_goal_makes_the_pose_unknown_until_the_next_see():
     assert b.me.sigma < 1.0
 
 
-
 def _pass_direction(b: Belief, true_velocity: tuple[float, float], to: tuple[float, float]) -> float:
     """Where (degrees, server frame) the pass skill's kick really sends the ball, given its true velocity."""
     session = PlayerSession("CF")
@@ -265,6 +264,7 @@ def test_a_ball_that_rolls_into_our_body_bounces_off_it_and_the_pass_still_goes_
     b.update(parse(f"(see 21 {SEE_CENTRE} ((b) 0.4 -70))"))  # 70 degrees off: outside the narrow cone
     assert math.hypot(b.ball.vx, b.ball.vy) < 0.1
     assert abs(_pass_direction(b, (0.03, -0.08), (0.0, 0.0)) - 0.0) < 5.0  # ahead, to (0, 0)
+
 
 # ---- the session: commands ------------------------------------------------------------
 
