@@ -194,6 +194,23 @@ def test_players_are_tracked_by_team_and_number_with_ages_then_forgotten():
     assert not b.players  # forgotten
 
 
+def test_a_player_seen_without_a_number_is_the_known_player_nearest_him():
+    """Outside the view cone a close player is just (P): he is who we last saw near there."""
+    b = _belief()
+    b.update(parse("(sense_body 10 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
+    b.update(parse(f'(see 10 {SEE_CENTRE} ((p "Opp" 6) 4 -20 0 0 0 0) ((p "CF" 8) 6 20 0 0 0 0))'))
+    for t in (11, 12, 13):
+        b.update(parse(f"(sense_body {t} (view_mode high narrow) (speed 0 0) (head_angle 0))"))
+    # In 3 cycles he ran 4 m round to our left side, 1 m off, 100 degrees off our head: no team, no number.
+    b.update(parse(f'(see 13 {SEE_CENTRE} ((P) 1 -100) ((p "Opp") 45 0))'))
+    opp = b.players[("Opp", 6)]
+    assert (opp.x, opp.y, opp.seen) == pytest.approx((-10.17, -0.98, 13), abs=0.05)
+    assert b.players[("CF", 8)].seen == 10  # the team-mate was further from the sighting
+    assert [team for team, _ in b.anonymous] == ["Opp"]  # 45 m off: near no known player, stays anonymous
+    near = [p for p in world_state(b).players if p.relative.distance < 2.0]
+    assert [(p.which_team, p.player_number, p.age) for p in near] == [(Team.OPP, 6, 0)]
+
+
 def test_a_right_side_player_sees_the_field_from_its_own_goal():
     b = _belief("r", 2)
     b.update(parse("(sense_body 0 (speed 0 0) (head_angle 0))"))
@@ -620,3 +637,25 @@ def test_near_the_ball_the_view_narrows_to_a_see_every_cycle_and_the_head_keeps_
     b.time = 43
     b.ball = Track(20.0, 20.0, 0.0, 0.0, 0.1, 40)  # far: the wider cone, every other cycle
     assert session.act().commands[0] == "(change_view normal)"
+
+
+def test_with_the_ball_at_its_feet_the_head_looks_round_the_player_a_cone_width_at_a_time():
+    session = placed_session()
+    b = session.belief
+    b.me.view_width = session.view = "narrow"
+    b.me.body = 30.0
+    b.ball = Track(0.5, 0.3, 0.0, 0.0, 0.1, 40)  # at our feet: seen within 3 m wherever we look
+    necks = []
+    for t in (41, 42, 43, 44):
+        b.time = b.see_time = t
+        commands = [c for c in session.act().commands if c.startswith("(turn_neck")]
+        b.me.neck += float(commands[0][len("(turn_neck ") : -1]) if commands else 0.0
+        necks.append(round(b.me.neck))
+    # Left of the body, ahead, right, left again: the 60-degree cones cover 180 degrees in three sees.
+    assert necks[3] == necks[0] and sorted(necks[:3]) == [-60, 0, 60]
+    b.ball = Track(3.0, 3.0, 0.0, 0.0, 0.1, 44)  # 4 m off: the head goes back to the ball
+    for t in (45, 46):
+        b.time = b.see_time = t
+        commands = [c for c in session.act().commands if c.startswith("(turn_neck")]
+        b.me.neck += float(commands[0][len("(turn_neck ") : -1]) if commands else 0.0
+        assert abs(abs(45.0 - b.me.head) - 15.0) < 1.0  # 15 degrees off the ball, inside the narrow cone

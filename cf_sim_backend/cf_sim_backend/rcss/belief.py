@@ -6,8 +6,9 @@ A :class:`Belief` reads every server message (init, params, sense_body, see, hea
   and the turns it commanded (the uncertainty grows while it is not seen);
 - the ball, placed from the latest sighting (velocity from the server's distance/direction change when
   it gives one), rolled on with the ball's decay while not seen; its age counts cycles since seen;
-- the other players by team and number (anonymous sightings live for one see), kept with growing
-  uncertainty until :data:`PLAYER_MEMORY` cycles old;
+- the other players by team and number, kept with growing uncertainty until :data:`PLAYER_MEMORY`
+  cycles old; a sighting without a number updates the known player nearest it, if one is near
+  enough, else it lives for one see;
 - the play mode (referee) and the score.
 
 It speaks two frames. The server's: y towards the bottom side line, angles positive clockwise. The
@@ -42,6 +43,9 @@ BALL_MEMORY = 100  # cycles the ball's estimate is still reported
 SELF_SIGMA_GROWTH = 0.1  # m per cycle without a see
 BALL_SIGMA_GROWTH = 0.2
 PLAYER_SIGMA_GROWTH = 0.4
+MATCH_GATE = 1.5  # m: a sighting without a number is a known player believed this close to it, plus
+MATCH_RUN = 1.2  # m per cycle since he was last seen (a player's top speed, with noise), up to
+MATCH_MOST = 6.0  # m
 UNSURE = 50.0  # m: the sigma of a pose we know nothing about
 HALF_VIEW = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}  # degrees each side of the head (synch see, v18+)
 QUANT = 0.05  # relative distance error of moving objects (the server rounds log(distance) to 0.1)
@@ -363,10 +367,40 @@ class Belief:
                 self.players[(team, int(name[2]))] = track
             else:
                 self.anonymous.append((team, track))
+        self._identify(see.time)
         if self.ball is not None and self.ball.seen != see.time and self._should_see(self.ball):
             # The server shows the ball wherever it is in the view cone, and within visible_distance
             # all around: not seen there, it is not where we believed (taken, kicked, placed).
             self.ball = None
+
+    def _identify(self, now: int) -> None:
+        """Give sightings without a number to the known players they most likely are, nearest first.
+
+        The server names a player only in the view cone and not too far: one close by outside the
+        cone is just ``(P)``, no team. Left anonymous, an opponent who came round our back to 1 m
+        stayed believed where we last saw him, and the player on the ball ran into him.
+        """
+        me, left = self.me, []
+        for team, track in sorted(self.anonymous, key=lambda a: math.hypot(a[1].x - me.x, a[1].y - me.y)):
+            best, best_d = None, math.inf
+            for key, known in self.players.items():
+                if known.seen == now or (team is not None and key[0] != team):
+                    continue
+                d = math.hypot(known.x - track.x, known.y - track.y)
+                if d < min(MATCH_MOST, MATCH_GATE + MATCH_RUN * (now - known.seen)) and d < best_d:
+                    best, best_d = known, d
+            if best is None:
+                left.append((team, track))
+                continue
+            best.x, best.y, best.vx, best.vy, best.sigma, best.seen = (
+                track.x,
+                track.y,
+                track.vx,
+                track.vy,
+                track.sigma,
+                now,
+            )
+        self.anonymous = left
 
     def _should_see(self, track: Track) -> bool:
         """Whether a see would show an object at ``track`` (well inside the cone, or close all around)."""

@@ -25,6 +25,7 @@ SCAN_OFFSET = 40.0  # degrees the head looks off the ball: the view cone (120 at
 SCAN_MARGIN = 15.0  # degrees the ball stays inside the cone's edge, whatever the width
 NARROW_WITHIN = 10.0  # m: a ball this close is watched every cycle (narrow view), not every other one
 NORMAL_BEYOND = 13.0  # m: and back to normal width past this (a gap, so a ball about 10 m off does not flip it)
+AROUND_WITHIN = 2.0  # m: a ball this close is seen all round (visible_distance 3 m): the head looks round the player
 NECK_LIMIT = 90.0  # rcssserver's maxneckang (and -minneckang)
 _SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
 
@@ -85,6 +86,7 @@ class PlayerSession:
     unexecuted: list[str] = field(default_factory=list)  # the latest ten, for a benchmark's report
     _scan_see: int = field(default=-1, init=False)  # the see the head's scan last swung at
     _scan_side: int = field(default=1, init=False)
+    _scan_turn: int = field(default=0, init=False)  # counts sees: the phase of the look round
     _necked: int = field(default=-1, init=False)  # the last cycle a turn_neck went out
     _viewed: int = field(default=-1, init=False)  # the last cycle a change_view went out
     view: str = "normal"  # the view width the next see comes with (asked for; the server confirms in sense_body)
@@ -165,22 +167,29 @@ class PlayerSession:
         """The turn_neck that points the head for the next see: the view cone sweeps the field.
 
         Each see the head swings to the other side, SCAN_OFFSET off the ball, so the ball stays
-        in view and every other see shows a different half of what is round it; with no ball
-        believed, the head swings between the neck's limits. A pass is only as safe as the
-        opponents the player has seen lately.
+        in view and every other see shows a different half of what is round it; with the ball
+        within AROUND_WITHIN it looks round the player instead; with no ball believed, the head
+        swings between the neck's limits. A pass is only as safe as the opponents the player has
+        seen lately.
         """
         b, me = self.belief, self.belief.me
         if self._necked == b.time or me.localised < 0:
             return []  # one turn_neck a cycle, and none before we know where we look
         if b.see_time != self._scan_see:
-            self._scan_see, self._scan_side = b.see_time, -self._scan_side
+            self._scan_see, self._scan_side, self._scan_turn = b.see_time, -self._scan_side, self._scan_turn + 1
         body = me.body
         pending = b.pending.get("turn")
         if pending is not None and pending[1] == b.sense_time:  # this cycle's turn moves the body the neck is on
             body = norm_deg(body + pending[2][0])
-        if b.ball is not None:
+        half = HALF_VIEW.get(self.view, 60.0)
+        if b.ball is not None and math.hypot(b.ball.x - me.x, b.ball.y - me.y) <= AROUND_WITHIN:
+            # The ball at our feet is seen wherever the head points: look left of the body, ahead
+            # and right in turn, a cone's width apart. With the head on the ball, a narrow cone hid
+            # the opponents closing in from the side, and the player on the ball ran into them.
+            target = (self._scan_turn % 3 - 1) * 2.0 * half
+        elif b.ball is not None:
             to_ball = math.degrees(math.atan2(b.ball.y - me.y, b.ball.x - me.x))
-            offset = min(SCAN_OFFSET, HALF_VIEW.get(self.view, 60.0) - SCAN_MARGIN)
+            offset = min(SCAN_OFFSET, half - SCAN_MARGIN)
             target = norm_deg(to_ball + self._scan_side * offset - body)
         else:
             target = self._scan_side * NECK_LIMIT
