@@ -34,7 +34,7 @@ GOAL_X = 52.5
 
 
 TACKLE_FAULT = 0x2000  # a player's state bit in the game log: his tackle this cycle missed
-IDLE_REACH = 0.9  # m: a ball this close is surely kickable (the server's reach is 1.085, our skills' 0.98)
+IDLE_REACH = 0.9  # m: a ball this close is surely kickable (the server's reach is 1.085; our skills kick one the see shows at 1.0)
 
 
 def read_rcg(path: Path, counters: bool = False) -> list[tuple[int, str, tuple[float, float], list[tuple]]]:

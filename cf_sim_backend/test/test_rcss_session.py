@@ -75,7 +75,7 @@ def test_belief_follows_play_modes_and_the_score():
     assert belief.side is Side.LEFT and belief.number == 1
     assert belief.score == {Side.LEFT: 2, Side.RIGHT: 0} and belief.mode == "play_on"
     assert belief.server["ball_decay"] == 0.94 and len(belief.player_types) == 18
-    assert belief.params().kickable_distance == pytest.approx(1.085 / math.exp(0.05) - 0.05)  # see the reach test
+    assert belief.params().kickable_distance == pytest.approx(1.005)  # see the reach test
 
 
 @pytest.mark.parametrize(
@@ -514,9 +514,25 @@ def test_our_executed_kick_sends_the_believed_ball_off_before_the_next_see():
     assert seen == 21 and math.hypot(x - truth[22][0], y - truth[22][1]) < 0.2  # was 2.2 m off (still at our feet)
 
 
-def test_the_skills_kick_only_within_a_reach_the_sees_rounding_cannot_fake():
-    params = Belief("CF").params()
-    assert 0.95 < params.kickable_distance < 1.0  # the server's is 1.085; a ball seen at 1.05 may be at 1.1
+def _shown(d: float) -> float:
+    """The distance rcssserver's see shows for a ball ``d`` away (its quantisation, ball and players)."""
+    return round(math.exp(round(math.log(d) / 0.1) * 0.1), 1)
+
+
+@pytest.mark.parametrize("margin", [0.7, 0.8, 0.9, 1.0])  # the kickable margins of the server's player types
+def test_the_skills_kick_every_ball_a_see_shows_surely_in_reach_and_no_other(margin):
+    b = Belief("CF")
+    b.server.update(player_size=0.3, ball_size=0.085, kickable_margin=margin)
+    reach, skills = 0.385 + margin, b.params().kickable_distance
+    truths = [i / 1000 for i in range(300, 2000)]
+    for d in truths:
+        if _shown(d) <= skills:
+            assert d <= reach  # never a kick the server refuses
+    # and every distance the see shows whose whole band is within reach is played
+    surely = {_shown(d) for d in truths} - {_shown(d) for d in truths if d > reach}
+    assert all(shown <= skills for shown in surely)
+    if margin == 0.7:
+        assert _shown(1.04) == 1.0 <= skills < 1.1 == _shown(1.06)  # 1.0: 0.95-1.05 m off; 1.1: maybe 1.16
 
 
 def _dead_reckoned_errors(our_turn: float | None) -> list[float]:

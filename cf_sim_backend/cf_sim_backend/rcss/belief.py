@@ -476,7 +476,7 @@ class Belief:
         # The reach the skills kick within: the server's, less what the see's rounding of the ball's
         # distance may hide (a kick at a ball just out of reach is refused and the cycle is lost).
         reach = values["player_size"] + values["ball_size"] + values["kickable_margin"]
-        values["kickable_margin"] -= reach - (reach / math.exp(QUANT) - 0.05)
+        values["kickable_margin"] -= reach - sure_reach(reach)
         return Params(**values)
 
     def expects_see(self) -> bool:
@@ -513,6 +513,25 @@ class Belief:
                 )
         w.team_names = {side: self.team, side.other: self.opponent or "opponent"}
         return w
+
+
+def sure_reach(reach: float, step: float = 2 * QUANT) -> float:
+    """The furthest a see may show the ball when it is surely within ``reach``.
+
+    rcssserver shows a distance d as exp(log d rounded to ``step``) rounded to 0.1: each value it
+    shows stands for a band of true distances. The answer is the largest value whose whole band
+    lies within reach (for the 1.085 m kickable distance: a ball shown at 1.0 is 0.95-1.05 m off,
+    so within reach; one shown at 1.1 is 1.05-1.16 m off, so maybe not), plus a little for the
+    floating point. Dead-reckoned distances between sees are held to the same mark.
+    """
+    k = math.floor(math.log(reach) / step)
+    while k > -60:
+        shown = round(math.exp(step * k), 1)
+        # (near the player two bands may show as one value: then the outer one must be within too)
+        if math.exp(step * (k + 0.5)) <= reach and round(math.exp(step * (k + 1)), 1) != shown:
+            return shown + 0.005
+        k -= 1
+    return 0.0
 
 
 def _velocity(d: float, a: float, dchg: float, dirchg: float, head: float, me: OwnPlayer) -> tuple[float, float]:
