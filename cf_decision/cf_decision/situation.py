@@ -13,7 +13,7 @@ from cf_lang.ontology import FIELD, AbsolutePositioning, PlayMode, Team, WorldSt
 FIELD_HALF_LENGTH = FIELD.half_length
 GOAL = (FIELD_HALF_LENGTH, 0.0)
 OWN_GOAL = (-FIELD_HALF_LENGTH, 0.0)
-KICKABLE = 1.0
+KICKABLE = 1.005  # m: a ball rcssserver's see shows at 1.0 m is surely kickable (the back-ends' skills kick it)
 
 
 @dataclass(frozen=True)
