@@ -272,15 +272,18 @@ def test_a_ball_that_rolls_into_our_body_bounces_off_it_and_the_pass_still_goes_
     aim = math.degrees(math.atan2(-15.0, 0.0))  # a team-mate 15 m to our left (server frame: -y)
     assert abs(_pass_direction(b, (0.094, 0.0), (-10.0, -15.0)) - aim) < 5.0
 
-    # Seen against our body outside the view cone, where the see gives no velocity: it bounced too.
+    # We ran into it: the sense_body says so (collision (ball)); the see outside the view cone gives
+    # no velocity. Our own speed was turned round too: the step we made was forwards.
     b = _belief()
     b.update(parse("(sense_body 20 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
     b.update(parse(f"(see 20 {SEE_CENTRE} ((b) 1.6 -70))"))
-    b.ball.vx, b.ball.vy = -0.3, 0.8  # rolling at us from the side, as believed: 0.74 m off after one cycle
-    b.update(parse("(sense_body 21 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
+    b.ball.vx, b.ball.vy = 0.0, -0.6  # rolling away across our way, as believed: 1.1 m off after one cycle
+    b.update(parse("(sense_body 21 (view_mode high narrow) (speed 0.03 180) (head_angle 0) (collision (ball)))"))
+    assert b.me.x == pytest.approx(-10.0 + 0.75, abs=0.05)  # 0.03 after decay (0.4) and the bounce (-0.1)
+    assert math.hypot(b.ball.x - b.me.x, b.ball.y - b.me.y) == pytest.approx(0.385, abs=0.01)
     b.update(parse(f"(see 21 {SEE_CENTRE} ((b) 0.4 -70))"))  # 70 degrees off: outside the narrow cone
-    assert math.hypot(b.ball.vx, b.ball.vy) < 0.1
-    assert abs(_pass_direction(b, (0.03, -0.08), (0.0, 0.0)) - 0.0) < 5.0  # ahead, to (0, 0)
+    assert (b.ball.vx, b.ball.vy) == pytest.approx((0.0, 0.056), abs=0.01)
+    assert abs(_pass_direction(b, (0.0, 0.056), (0.0, 0.0)) - 0.0) < 5.0  # ahead, to (0, 0)
 
 
 # ---- the session: commands ------------------------------------------------------------

@@ -49,7 +49,6 @@ MATCH_MOST = 6.0  # m
 UNSURE = 50.0  # m: the sigma of a pose we know nothing about
 HALF_VIEW = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}  # degrees each side of the head (synch see, v18+)
 QUANT = 0.05  # relative distance error of moving objects (the server rounds log(distance) to 0.1)
-TOUCHING = 0.4  # m: the see's distance of a ball against our body (contact is 0.385, shown rounded to 0.1)
 
 # rcssserver play modes the embedded simulator's names do not have, as the nearest of those.
 _FOUL = (
@@ -277,11 +276,17 @@ class Belief:
             angle = math.radians(me.head + direction)
             me.vx, me.vy = amount * math.cos(angle), amount * math.sin(angle)
         decay = float(self.param("player_decay", 0.4)) or 0.4
-        me.x += me.vx / decay
-        me.y += me.vy / decay
+        # (collision ...) since protocol 13: what we ran into this cycle. The server then turned
+        # our speed round (times -0.1) after it moved us: the step we made was the other way.
+        collided = None
+        if "collision" in parts:
+            collided = {str(c[0]) for c in parts["collision"] if isinstance(c, list) and c}
+        step = decay if not collided else -0.1 * decay
+        me.x += me.vx / step
+        me.y += me.vy / step
         me.sigma += SELF_SIGMA_GROWTH
         me.sigma_head += 1.0
-        self._roll_on()
+        self._roll_on(collided)
 
     def _apply_executed(self) -> None:
         me = self.me
@@ -298,8 +303,11 @@ class Belief:
             elif self.sense_time > sent_at + 1:  # two sense_bodies without it: the server dropped it
                 del self.pending[kind]
 
-    def _roll_on(self) -> None:
-        """Carry the ball one cycle on (it decays, and bounces off our body) and grow every estimate's uncertainty."""
+    def _roll_on(self, collided: set[str] | None = None) -> None:
+        """Carry the ball one cycle on (it decays, and bounces off our body) and grow every estimate's uncertainty.
+
+        ``collided``: what the sense_body says we ran into (None: it does not say, older protocols).
+        """
         if self.ball is not None:
             decay = float(self.server.get("ball_decay", 0.94))
             self.ball.x += self.ball.vx
@@ -307,7 +315,8 @@ class Belief:
             self.ball.vx *= decay
             self.ball.vy *= decay
             self.ball.sigma += BALL_SIGMA_GROWTH
-            self._bounce()
+            if "ball" in (collided or ()) or (collided is None and self._touching()):
+                self._bounce()
         for track in self.players.values():
             track.sigma += PLAYER_SIGMA_GROWTH
         self.players = {k: t for k, t in self.players.items() if self.time - t.seen <= PLAYER_MEMORY}
@@ -316,13 +325,15 @@ class Belief:
         """The distance at which the ball touches our body."""
         return float(self.param("player_size", 0.3)) + float(self.server.get("ball_size", 0.085))
 
+    def _touching(self) -> bool:
+        """The believed ball overlaps our body."""
+        return math.hypot(self.ball.x - self.me.x, self.ball.y - self.me.y) < self._contact()
+
     def _bounce(self) -> None:
-        """If the ball now overlaps our body, it bounced off it, as the server has it: placed against
-        the body, its velocity times -0.1. A kick that took the old velocity out would go astray."""
+        """The ball bounced off our body, as the server has it: put against the body, its velocity
+        times -0.1. A kick that took out the old velocity went astray (passes off by up to 130 degrees)."""
         ball, me, contact = self.ball, self.me, self._contact()
         d = math.hypot(ball.x - me.x, ball.y - me.y)
-        if d >= contact:
-            return
         if d > 1e-6:
             ball.x, ball.y = me.x + (ball.x - me.x) * contact / d, me.y + (ball.y - me.y) * contact / d
         ball.vx, ball.vy = -0.1 * ball.vx, -0.1 * ball.vy
@@ -349,10 +360,6 @@ class Belief:
                 vx, vy = self.ball.vx if self.ball else 0.0, self.ball.vy if self.ball else 0.0
                 if len(obj.extra) >= 2 and isinstance(obj.extra[0], float):
                     vx, vy = _velocity(d, a, obj.extra[0], obj.extra[1], head, me)
-                elif d <= TOUCHING and vx * (me.x - x) + vy * (me.y - y) > 0.0:
-                    # Against our body and, as we believed, rolling into it: it bounced (a ball seen
-                    # outside the view cone comes without its velocity, so the see does not say so).
-                    vx, vy = -0.1 * vx, -0.1 * vy
                 self.ball = Track(x, y, vx, vy, sigma, see.time)
                 continue
             track = Track(x, y, sigma=sigma, seen=see.time, goalie="goalie" in name)
