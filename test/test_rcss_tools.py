@@ -78,7 +78,7 @@ def test_where_each_team_had_the_ball_and_won_it_back_by_third_of_the_field(tmp_
     assert "| us | 0% | 33% | 0% | 0 | 0 | 0 |" in text and "| PYRUS | 0% | 56% | 11% | 0 | 1 | 0 |" in text
 
 
-def test_tackles_and_idle_cycles_at_the_ball_are_read_from_the_counters_and_state_bits(tmp_path, capsys):
+def test_tackles_idle_cycles_and_time_in_their_third_are_read_from_the_game_log(tmp_path, capsys):
     """CF 9 has the ball at his feet for 4 cycles and kicks it in one; PYRUS 3 tackles twice, missing once."""
 
     def player(side, n, x, state, kicks, tackles):
@@ -88,9 +88,9 @@ def test_tackles_and_idle_cycles_at_the_ball_are_read_from_the_counters_and_stat
         (10.5, 0, 0, 0x1),
         (10.5, 0, 0, 0x1),  # idle: the ball 0.5 m from him, no kick
         (10.5, 0, 1, 0x1001),  # idle again; PYRUS 3's tackle hits
-        (15.0, 1, 1, 0x1),  # he kicked it away
-        (15.0, 1, 2, 0x2001),  # the ball gone; PYRUS 3's second tackle missed
-        (15.0, 1, 2, 0x1),
+        (20.0, 1, 1, 0x1),  # he kicked it away, into their third (past x=17.5)
+        (20.0, 1, 2, 0x2001),  # the ball gone; PYRUS 3's second tackle missed
+        (20.0, 1, 2, 0x1),
     ]
     lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
     for t, (ball, kicks, tackles, state) in enumerate(frames, start=1):
@@ -102,8 +102,9 @@ def test_tackles_and_idle_cycles_at_the_ball_are_read_from_the_counters_and_stat
     stats = match_stats(match / "m.rcg", "l")
     assert stats["tackles"] == [[0, 0], [1, 2]]
     assert stats["idle"] == [2, 3]  # of the 3 cycles with the ball at his feet (and a next cycle), 2 idle
+    assert stats["attacking"] == [1.0, 0.0]  # ours from his kick on, every cycle of it in their third
     row = {"n": 1, "score": [0, 0], "cpu_ms_per_cycle": 1.0, "relaunched": 0, "executed": 1.0}
     (tmp_path / "series.json").write_text(__import__("json").dumps([row]))
     assert again(tmp_path / "match-1", "CF") == 2  # no series there
     assert again(tmp_path, "CF") == 0
-    assert "| 1 | 0:0 | 0:0 | 100%:0% | 0/0:1/2 | 67% of 3 |" in capsys.readouterr().out
+    assert "| 1 | 0:0 | 0:0 | 100%:0% | 100%:0% | 0/0:1/2 | 67% of 3 |" in capsys.readouterr().out

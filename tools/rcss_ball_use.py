@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_series import GOAL_X, kick_events, read_rcg, side_of
+from rcss_series import Territory, kick_events, read_rcg, side_of, territory_of
 
 _DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
 _NUMBERS = re.compile(r"(?<![\w-])-?\d+(\.\d+)?")
@@ -91,32 +91,10 @@ def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, 
     return out
 
 
-THIRD = GOAL_X / 3  # m from the halfway line to the edge of the middle third
-
-
-@dataclass
-class Territory:
-    held: list[int] = field(default_factory=lambda: [0, 0, 0])  # play-on cycles: our third, middle, theirs
-    won: list[int] = field(default_factory=lambda: [0, 0, 0])
-
-
 def territory(match: Path, team: str = "CF") -> dict[str, Territory]:
     """Where each team ("us", "them") had the ball and won it back, in thirds seen from our goal."""
-    frames, side, forward = game(match, team)
-    kicked_at = {i: s for i, s, *_ in kick_events(frames)}  # the last kick of a frame decides
-    out = {"us": Territory(), "them": Territory()}
-    holder = None
-    for i, (_, mode, ball, _) in enumerate(frames):
-        third = 0 if forward * ball[0] < -THIRD else 1 if forward * ball[0] <= THIRD else 2
-        kicker = kicked_at.get(i)
-        if kicker is not None:
-            who = "us" if kicker == side else "them"
-            if holder is not None and who != holder and mode == "play_on":
-                out[who].won[third] += 1
-            holder = who
-        if mode == "play_on" and holder is not None:
-            out[holder].held[third] += 1
-    return out
+    frames, side, _ = game(match, team)
+    return territory_of(frames, side)
 
 
 def territory_table(where: dict[str, Territory], opponent: str = "them") -> str:

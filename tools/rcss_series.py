@@ -9,7 +9,8 @@ Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode 
 command; match n with the server's seed SEED+n). From each
 match's summary and game log (.rcg) it prints: the score, shots (kicks towards the opponent's
 goal from within 25 m of it), possession (cycles of play_on in which a player of that side was
-nearest the ball), tackles (hits of tries, each side), idle at the ball (of the play-on cycles in
+nearest the ball), time in the other's third (the share of play-on cycles in which we had the ball,
+our kick its last, in their third : they in ours), tackles (hits of tries, each side), idle at the ball (of the play-on cycles in
 which a field player of ours had the ball within 0.9 m, the share in which he neither kicked nor
 tackled it), offsides and faults (free kick, catch, back pass) called against each side,
 our CPU per cycle, relaunches, and the share of our body commands the server
@@ -27,6 +28,7 @@ import math
 import subprocess
 import sys
 import time
+from dataclasses import dataclass, field
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -101,6 +103,35 @@ def kick_events(frames: list) -> list[tuple[int, str, int, float, float]]:
     return events
 
 
+THIRD = GOAL_X / 3  # m from the halfway line to the edge of the middle third
+
+
+@dataclass
+class Territory:
+    held: list[int] = field(default_factory=lambda: [0, 0, 0])  # play-on cycles: our third, middle, theirs
+    won: list[int] = field(default_factory=lambda: [0, 0, 0])
+
+
+def territory_of(frames: list, our_side: str) -> dict[str, Territory]:
+    """Where each team ("us", "them") had the ball (its last kick was theirs) and won it back, in
+    thirds seen from our goal (``read_rcg``'s frames)."""
+    forward = 1.0 if our_side == "l" else -1.0
+    kicked_at = {i: s for i, s, *_ in kick_events(frames)}  # the last kick of a frame decides
+    out = {"us": Territory(), "them": Territory()}
+    holder = None
+    for i, (_, mode, ball, _) in enumerate(frames):
+        third = 0 if forward * ball[0] < -THIRD else 1 if forward * ball[0] <= THIRD else 2
+        kicker = kicked_at.get(i)
+        if kicker is not None:
+            who = "us" if kicker == our_side else "them"
+            if holder is not None and who != holder and mode == "play_on":
+                out[who].won[third] += 1
+            holder = who
+        if mode == "play_on" and holder is not None:
+            out[holder].held[third] += 1
+    return out
+
+
 def match_stats(rcg: Path, our_side: str) -> dict:
     """Possession, shots, tackles, offsides and faults of both sides, and our idle cycles at the ball, from a game log."""
     frames = read_rcg(rcg, counters=True)
@@ -119,7 +150,10 @@ def match_stats(rcg: Path, our_side: str) -> dict:
     total = max(1, possession["l"] + possession["r"])
     calls = referee_calls(rcg)
     fights = contests(frames, our_side)
+    where = territory_of(frames, our_side)
+    held = max(1, sum(sum(w.held) for w in where.values()))
     return {
+        "attacking": [where["us"].held[2] / held, where["them"].held[0] / held],
         "tackles": [fights["tackles"][our_side], fights["tackles"][theirs]],
         "idle": fights["idle"],
         "shots": [shots[our_side], shots[theirs]],
@@ -186,9 +220,9 @@ def play(args: argparse.Namespace, n: int) -> dict:
 
 
 HEADER = (
-    "| match | score | shots | possession | tackles hit/tried | idle at the ball | offsides | faults |"
-    " our CPU ms/cycle | relaunches | commands executed |\n"
-    "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    "| match | score | shots | possession | in the other's third | tackles hit/tried | idle at the ball | offsides |"
+    " faults | our CPU ms/cycle | relaunches | commands executed |\n"
+    "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 )
 
 
@@ -196,13 +230,15 @@ def row_line(r: dict) -> str:
     """One match's table row."""
     n = r["n"]
     if "error" in r:
-        return f"| {n} | failed: {r['error'][:300]} | | | | | | | | | |"
+        return f"| {n} | failed: {r['error'][:300]} | | | | | | | | | | |"
     shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
     off, faults = r.get("offsides", ["?", "?"]), r.get("faults", ["?", "?"])
     (our_hit, our_try), (their_hit, their_try) = r.get("tackles", [[0, 0], [0, 0]])
     idle, at_ball = r.get("idle", [0, 0])
+    ours, theirs = r.get("attacking", [0, 0])
     return (
         f"| {n} | {r['score'][0]}:{r['score'][1]} | {shots[0]}:{shots[1]} | {poss[0]:.0%}:{poss[1]:.0%} |"
+        f" {ours:.0%}:{theirs:.0%} |"
         f" {our_hit}/{our_try}:{their_hit}/{their_try} | {idle / max(1, at_ball):.0%} of {at_ball} |"
         f" {off[0]}:{off[1]} | {faults[0]}:{faults[1]} | {r['cpu_ms_per_cycle']} | {r['relaunched']} |"
         f" {r['executed']:.1%} |"
