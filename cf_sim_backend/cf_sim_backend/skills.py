@@ -113,10 +113,12 @@ def kick_reach(world: World, me: SimPlayer, x: float, y: float, rate: float | No
 
 COLLECT_AHEAD = 0.6  # m in front of the body: where a touch gives the ball nearly the most speed
 PRESSED = 2.5  # m: an opponent this close to the ball may take it during a collecting touch
+LAID = 0.3  # m: a ball this near where a collecting touch would lay it is laid already
 
 
 def collect_kick(world: World, me: SimPlayer) -> Command | None:
-    """A touch that lays the ball COLLECT_AHEAD in front of where I will be next cycle, if one kick can.
+    """A touch that lays the ball COLLECT_AHEAD in front of where I will be next cycle, if one kick can
+    and the ball is not within LAID of there already.
 
     From there the next kick is nearly as strong as any: a ball at the edge of the kickable area or
     behind the body leaves at two thirds of the speed or less.
@@ -126,7 +128,9 @@ def collect_kick(world: World, me: SimPlayer) -> Command | None:
     tx = me.x + me.vx + COLLECT_AHEAD * math.cos(body)
     ty = me.y + me.vy + COLLECT_AHEAD * math.sin(body)
     ax, ay = tx - b.x - b.vx, ty - b.y - b.vy
-    if math.hypot(ax, ay) > most_accel(world, rate):
+    if math.hypot(ax, ay) > most_accel(world, rate) or math.hypot(ax, ay) < LAID:
+        # (laid already: another touch would not make the kick any faster, and the player on the
+        # rcssserver touched a ball lying there three times running while an opponent came in)
         return None
     return _kick_for(me, ax, ay, rate)
 
