@@ -208,7 +208,6 @@ def test_a_pass_from_a_ball_beside_the_body_is_laid_in_front_first_and_leaves_fa
     assert laid > 1.25 * direct  # the pass wants 2.7 m/cycle; from beside the body one touch gives ~1.9
 
 
-
 def test_a_ball_lying_where_a_collecting_touch_would_lay_it_is_kicked_at_once():
     sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0))
     b = sim.world.ball
@@ -216,6 +215,7 @@ def test_a_ball_lying_where_a_collecting_touch_would_lay_it_is_kicked_at_once():
     status, cycles = run(sim, Side.LEFT, 4, exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4), 5)
     assert status == "done" and cycles == 2  # the kick, then done: no touch that leaves it where it lay
     assert b.vx > 1.5
+
 
 def test_the_taker_of_a_set_piece_kicks_at_once_a_collecting_touch_would_be_a_free_kick_fault():
     sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0))
