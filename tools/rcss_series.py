@@ -9,12 +9,12 @@ Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode 
 command; match n with the server's seed SEED+n). From each
 match's summary and game log (.rcg) it prints: the score, shots (kicks towards the opponent's
 goal from within 25 m of it), possession (cycles of play_on in which a player of that side was
-nearest the ball), time in the other's third (the share of play-on cycles in which we had the ball,
-our kick its last, in their third : they in ours), tackles (hits of tries, each side), idle at the ball (of the play-on cycles in
-which a field player of ours had the ball within 0.9 m, the share in which he neither kicked nor
-tackled it), offsides and faults (free kick, catch, back pass) called against each side,
-our CPU per cycle, relaunches, and the share of our body commands the server
-executed; then the series' totals. The opponent is never part of this repository: build it
+nearest the ball), time in the other's third (the share of play-on cycles in which we had the
+ball, our kick its last, in their third : they in ours), tackles (hits of tries, each side), idle
+at the ball (of the play-on cycles in which a field player of ours had the ball within 0.9 m, the
+share in which he neither kicked nor tackled it), offsides and faults (free kick, catch, back
+pass) called against each side, our CPU per cycle, relaunches, and the share of our body commands
+the server executed; then the series' totals. The opponent is never part of this repository: build it
 beside it (see docs/rcssserver.md).
 
     python tools/rcss_series.py --again DIR   # the table of a series played into DIR, read again

@@ -399,14 +399,8 @@ class Belief:
             if best is None:
                 left.append((team, track))
                 continue
-            best.x, best.y, best.vx, best.vy, best.sigma, best.seen = (
-                track.x,
-                track.y,
-                track.vx,
-                track.vy,
-                track.sigma,
-                now,
-            )
+            best.x, best.y, best.vx, best.vy = track.x, track.y, track.vx, track.vy
+            best.sigma, best.seen = track.sigma, now
         self.anonymous = left
 
     def _should_see(self, track: Track) -> bool:
