@@ -434,7 +434,7 @@ class Belief:
     def _kick_accel(self, power: float, direction: float) -> tuple[float, float]:
         """The ball's acceleration (server frame) a kick gives, as rcssserver computes it without noise."""
         me, ball = self.me, self.ball
-        size = float(self.param("player_size", 0.3)) + float(self.server.get("ball_size", 0.085))
+        size = self._contact()
         margin = float(self.param("kickable_margin", 0.7)) or 0.7
         to_ball = math.degrees(math.atan2(ball.y - me.y, ball.x - me.x))
         dir_diff = abs(norm_deg(to_ball - me.body))
