@@ -101,10 +101,23 @@ def test_tackles_idle_cycles_and_time_in_their_third_are_read_from_the_game_log(
     (match / "m.rcg").write_text("\n".join(lines) + "\n")
     stats = match_stats(match / "m.rcg", "l")
     assert stats["tackles"] == [[0, 0], [1, 2]]
-    assert stats["idle"] == [2, 3]  # of the 3 cycles with the ball at his feet (and a next cycle), 2 idle
+    assert stats["idle"] == [2, 3, 0]  # of the 3 cycles with the ball at his feet (and a next cycle), 2 idle
     assert stats["attacking"] == [1.0, 0.0]  # ours from his kick on, every cycle of it in their third
     row = {"n": 1, "score": [0, 0], "cpu_ms_per_cycle": 1.0, "relaunched": 0, "executed": 1.0}
     (tmp_path / "series.json").write_text(__import__("json").dumps([row]))
     assert again(tmp_path / "match-1", "CF") == 2  # no series there
     assert again(tmp_path, "CF") == 0
-    assert "| 1 | 0:0 | 0:0 | 100%:0% | 100%:0% | 0/0:1/2 | 67% of 3 |" in capsys.readouterr().out
+    assert "| 1 | 0:0 | 0:0 | 100%:0% | 100%:0% | 0/0:1/2 | 67% of 3, 0 held |" in capsys.readouterr().out
+
+
+def test_idle_cycles_at_the_ball_while_his_own_tackle_holds_him_are_told_apart(tmp_path):
+    """CF 9 idles once with the ball at his feet, tackles, idles twice (held), and 10 cycles on once more (free)."""
+    tackles_by_frame = [0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]  # his tackle between frames 2 and 3
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t, tackles in enumerate(tackles_by_frame, start=1):
+        ball = 10.5 if t in (1, 2, 3, 4, 13) else 30.0  # at his feet in frames 1-4 and 13 only
+        me = f"((l 9) 0 0x1 10.0 0 0 0 0 0 (v h 120) (s 8000 1 1 0) (c 0 0 0 0 0 0 0 0 {tackles} 0 0))"
+        lines.append(f"(show {t} ((b) {ball} 0 0 0) {me})")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    # frame 1 idle and free; 2: he tackles; 3 and 4 idle, held (frames 3-12); 13 idle, free again
+    assert match_stats(tmp_path / "m.rcg", "l")["idle"] == [4, 5, 2]

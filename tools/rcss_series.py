@@ -12,7 +12,8 @@ goal from within 25 m of it), possession (cycles of play_on in which a player of
 nearest the ball), time in the other's third (the share of play-on cycles in which we had the
 ball, our kick its last, in their third : they in ours), tackles (hits of tries, each side), idle
 at the ball (of the play-on cycles in which a field player of ours had the ball within 0.9 m, the
-share in which he neither kicked nor tackled it), offsides and faults (free kick, catch, back
+share in which he neither kicked nor tackled it; "held": such cycles in which his own tackle of
+the last 10 cycles held him, as rcssserver's tackle_cycles does), offsides and faults (free kick, catch, back
 pass) called against each side, our CPU per cycle, relaunches, and the share of our body commands
 the server executed; then the series' totals. The opponent is never part of this repository: build it
 beside it (see docs/rcssserver.md).
@@ -37,6 +38,7 @@ GOAL_X = 52.5
 
 TACKLE_FAULT = 0x2000  # a player's state bit in the game log: his tackle this cycle missed
 IDLE_REACH = 0.9  # m: a ball this close is surely kickable (the server's reach is 1.085; our skills kick one the see shows at 1.0)
+TACKLE_HOLD = 10  # cycles a tackle, hit or missed, holds the tackler (rcssserver's tackle_cycles)
 
 
 def read_rcg(path: Path, counters: bool = False) -> list[tuple[int, str, tuple[float, float], list[tuple]]]:
@@ -71,10 +73,12 @@ def read_rcg(path: Path, counters: bool = False) -> list[tuple[int, str, tuple[f
 
 def contests(frames: list, our_side: str) -> dict:
     """Tackles of each side (hits, tries), and how often a field player of ours with the ball within
-    IDLE_REACH in play on neither kicked nor tackled it (idle cycles, such cycles) (``read_rcg(..., counters=True)``)."""
+    IDLE_REACH in play on neither kicked nor tackled it (idle cycles, such cycles, idle cycles in
+    which his own tackle of the last TACKLE_HOLD cycles held him) (``read_rcg(..., counters=True)``)."""
     tackles = {"l": [0, 0], "r": [0, 0]}
-    idle = [0, 0]
+    idle = [0, 0, 0]
     before: dict = {}
+    tackled: dict = {}  # player -> the frame of his last tackle
     for i, (_, mode, (bx, by), players) in enumerate(frames):
         now = {(p[0], p[1]): p for p in players}
         for key, (side, number, x, y, kicks, tried, state) in now.items():
@@ -82,12 +86,15 @@ def contests(frames: list, our_side: str) -> dict:
             if last is not None and tried > last[5]:
                 tackles[side][1] += 1
                 tackles[side][0] += not state & TACKLE_FAULT
+                tackled[key] = i  # held from this frame's cycle on
             at_ball = math.hypot(x - bx, y - by) <= IDLE_REACH
             if side == our_side and number != 1 and mode == "play_on" and at_ball and i + 1 < len(frames):
                 after = next((p for p in frames[i + 1][3] if (p[0], p[1]) == key), None)
                 if after is not None:
                     idle[1] += 1
-                    idle[0] += after[4] == kicks and after[5] == tried
+                    still = after[4] == kicks and after[5] == tried
+                    idle[0] += still
+                    idle[2] += still and 0 <= i - tackled.get(key, -TACKLE_HOLD) < TACKLE_HOLD
         before = now
     return {"tackles": tackles, "idle": idle}
 
@@ -234,12 +241,13 @@ def row_line(r: dict) -> str:
     shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
     off, faults = r.get("offsides", ["?", "?"]), r.get("faults", ["?", "?"])
     (our_hit, our_try), (their_hit, their_try) = r.get("tackles", [[0, 0], [0, 0]])
-    idle, at_ball = r.get("idle", [0, 0])
+    idle, at_ball, held = ([*r.get("idle", [0, 0]), None])[:3]  # (series before the held count: none)
     ours, theirs = r.get("attacking", [0, 0])
+    held_text = "" if held is None else f", {held} held"
     return (
         f"| {n} | {r['score'][0]}:{r['score'][1]} | {shots[0]}:{shots[1]} | {poss[0]:.0%}:{poss[1]:.0%} |"
         f" {ours:.0%}:{theirs:.0%} |"
-        f" {our_hit}/{our_try}:{their_hit}/{their_try} | {idle / max(1, at_ball):.0%} of {at_ball} |"
+        f" {our_hit}/{our_try}:{their_hit}/{their_try} | {idle / max(1, at_ball):.0%} of {at_ball}{held_text} |"
         f" {off[0]}:{off[1]} | {faults[0]}:{faults[1]} | {r['cpu_ms_per_cycle']} | {r['relaunched']} |"
         f" {r['executed']:.1%} |"
     )
