@@ -21,9 +21,6 @@ START_LOSS = 0.7  # metres lost to accelerating: 0.6, 1.44, 2.38, 3.35 after 1, 
 TURN_CYCLES = 1
 REACH = 1.0
 CATCH_REACH = 1.5  # rcssserver's catchable area is 1.2 m by 1 m in the catch direction
-BODY_AND_BALL = 0.385  # m: rcssserver's player_size plus ball_size, where the kickable margin starts
-KICKABLE_MARGIN = 0.7
-PRESSED = 2.5  # m: with an opponent this close to the ball the kick skills kick at once (no laying it first)
 HORIZON = 40  # cycles looked ahead: a ball still rolling after that is anybody's
 CYCLES_PER_SECOND = 10.0
 
@@ -31,19 +28,6 @@ CYCLES_PER_SECOND = 10.0
 def pass_speed(dist: float) -> float:
     """The speed a pass leaves the foot with to cover ``dist`` metres (as the action kicks it)."""
     return min(BALL_SPEED_MAX, actions.pass_speed(dist, BALL_DECAY))
-
-
-def touch_speed(me: Point, body: float | None, ball: Point) -> float:
-    """The fastest one touch sends a still ball lying at ``ball`` (``body``: the heading, radians).
-
-    rcssserver's kick rate: a ball at the far edge of the kickable area gives a quarter less, one
-    right behind the body another quarter less. Against pressing teams a third of our passes were
-    kicked from the edge at once and left at about 1.5 m/cycle, not the 2.7 a laid ball gives.
-    """
-    gap = max(0.0, math.hypot(ball[0] - me[0], ball[1] - me[1]) - BODY_AND_BALL)
-    off = 0.0 if body is None else abs(math.remainder(math.atan2(ball[1] - me[1], ball[0] - me[0]) - body, math.tau))
-    rate = 1.0 - 0.25 * off / math.pi - 0.25 * min(1.0, gap / KICKABLE_MARGIN)
-    return BALL_SPEED_MAX * max(0.1, rate)
 
 
 def ball_path(start: Point, velocity: Point, cycles: int = HORIZON) -> list[Point]:

@@ -18,7 +18,6 @@ SHOOT_RANGE = 22.0  # at a set piece, shoot from within this distance
 SHOT_RANGE = 30.0  # in play, consider shots from within this distance
 LONG_SHOT_RANGE = 25.0  # in play, with nothing better, shoot anyway from within this distance
 SHOT_SPEED = 2.4  # m/cycle a shot is assumed to leave the foot with
-THROUGH_LEADS = (0.0, 5.0, 10.0, 15.0, 20.0)  # m ahead of a team-mate ahead of the ball a pass may aim
 SAFE_MARGIN = 2  # cycles: our receiver must be this much sooner at the ball than any opponent
 OPEN_NEAR = 5.0  # m: no opponent this close, and
 OPEN_AHEAD = 15.0  # m: none this far along the way: a dribble may go at full speed
@@ -55,20 +54,15 @@ def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
     return Decision("pass", act.Pass(target=target, power=100.0), "set piece: kick long")
 
 
-def best_shot(state: WorldState, ball: tuple[float, float], most: float = SHOT_SPEED) -> tuple[float, float] | None:
-    """The point in the goal a shot reaches before any opponent can stop it (the widest margin), if any.
-
-    ``most``: the fastest this touch can send the ball (see :func:`touch_most`).
-    """
+def best_shot(state: WorldState, ball: tuple[float, float]) -> tuple[float, float] | None:
+    """The point in the goal a shot reaches before any opponent can stop it (the widest margin), if any."""
     if dist(ball, GOAL) > SHOT_RANGE:
         return None
-    target, margin = shot_margin(state, ball, most)
+    target, margin = shot_margin(state, ball)
     return target if margin > 0 else None
 
 
-def shot_margin(
-    state: WorldState, ball: tuple[float, float], most: float = SHOT_SPEED
-) -> tuple[tuple[float, float], int]:
+def shot_margin(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[float, float], int]:
     """The point in the goal with the widest margin (cycles between the ball crossing the line and
     the first opponent who could stop it; negative: stopped first), and that margin.
 
@@ -81,7 +75,7 @@ def shot_margin(
     half_goal = FIELD.goal_width / 2 - 0.8
     for y in (-half_goal, -half_goal / 2, 0.0, half_goal / 2, half_goal):
         target = (FIELD_HALF_LENGTH + 1.0, y)
-        path = reach.kicked_path(ball, target, min(SHOT_SPEED, most))
+        path = reach.kicked_path(ball, target, SHOT_SPEED)
         arrive = next((n for n, (x, _) in enumerate(path, start=1) if x >= FIELD_HALF_LENGTH), None)
         if arrive is None:
             continue
@@ -103,26 +97,22 @@ class PassChoice:
     gain: float  # metres up the field from the ball to where it is received
 
 
-def best_pass(
-    state: WorldState, ball: tuple[float, float], min_gain: float = -1e9, most: float = reach.BALL_SPEED_MAX
-) -> PassChoice | None:
+def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1e9) -> PassChoice | None:
     """The best pass a team-mate receives SAFE_MARGIN cycles before any opponent could, gaining ``min_gain``.
 
-    Targets are team-mates' feet and points ahead of them (through balls; the long ones, into the
-    space behind a line, only for team-mates ahead of the ball); the score is how far up the field
-    the ball is received, plus a little for time to spare.
+    Targets are team-mates' feet and points ahead of them (through balls); the score is how far
+    up the field the ball is received, plus a little for time to spare.
     """
     mates, opponents = sides(state)
     best, best_score = None, -1e9
     for number, here in mates:
-        ahead = here[0] - ball[0]
-        leads = THROUGH_LEADS if ahead > 5.0 else (0.0, 5.0, 10.0) if ahead > -5.0 else (0.0,)
+        leads = (0.0, 5.0, 10.0) if here[0] > ball[0] - 5.0 else (0.0,)
         for lead in leads:
             target = (min(FIELD_HALF_LENGTH - 3.0, here[0] + lead), here[1])
             d = dist(ball, target)
             if not 4.0 <= d <= 40.0:
                 continue
-            path = reach.kicked_path(ball, target, min(most, reach.pass_speed(d)))
+            path = reach.kicked_path(ball, target, reach.pass_speed(d))
             ours = reach.first_cycles(path, [(pos, False) for n, pos in mates])
             if ours is None:
                 continue
@@ -189,11 +179,10 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     if mode in OUR_SET_PIECES:
         return set_piece_kick(state, me)
     ball = xy(state.ball.positioning) if state.ball and state.ball.positioning else me
-    most = touch_most(state, me, ball)
-    shot = best_shot(state, ball, most)
+    shot = best_shot(state, ball)
     if shot is not None:
         return Decision("shoot", act.Shoot(target=point(*shot), power=100.0), "a free shot")
-    safe = best_pass(state, ball, most=most)
+    safe = best_pass(state, ball)
     if safe is not None and safe.gain >= 10.0:
         return pass_to(safe, "forward pass")
     space = dribble_room(state, me)
@@ -204,13 +193,13 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
         # In our half without a forward pass or an open run: clear it. Against real teams a short
         # pass or a dribble there reached a team-mate about one time in six and left the ball where
         # it was (docs/decision.md): if it is lost, lose it far from our goal.
-        aim, _ = best_clearance(state, ball, most)
+        aim, _ = best_clearance(state, ball)
         return Decision("pass", act.Pass(target=point(*aim), power=100.0), "clear the ball")
     if dist(ball, GOAL) <= LONG_SHOT_RANGE:
         # Near their goal every other way was lost nearly every time: a shot at least may go in.
-        target, _ = shot_margin(state, ball, most)
+        target, _ = shot_margin(state, ball)
         return Decision("shoot", act.Shoot(target=point(*target), power=100.0), "a hopeful shot")
-    aim, kept = best_clearance(state, ball, most)
+    aim, kept = best_clearance(state, ball)
     if kept:
         # A close-control dribble here kept the ball about one time in ten (docs/decision.md).
         return Decision("pass", act.Pass(target=point(*aim), power=100.0), "kick it into space for a team-mate")
@@ -222,20 +211,7 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     return Decision("dribble", act.Dribble(target=goal_ward, speed=70.0), "pressed: take it on")
 
 
-def touch_most(state: WorldState, me: tuple[float, float], ball: tuple[float, float]) -> float:
-    """The fastest the coming touch can send the ball: with an opponent within reach.PRESSED of it
-    the kick skills kick it where it lies (:func:`reach.touch_speed`), else they lay it first.
-    """
-    _, opponents = sides(state)
-    if all(dist(pos, ball) > reach.PRESSED for pos, _ in opponents):
-        return reach.BALL_SPEED_MAX
-    yaw = state.me.positioning.yaw if state.me and state.me.positioning else None
-    return reach.touch_speed(me, yaw, ball)
-
-
-def best_clearance(
-    state: WorldState, ball: tuple[float, float], most: float = CLEAR_SPEED
-) -> tuple[tuple[float, float], bool]:
+def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[float, float], bool]:
     """Where to aim a ball kicked as hard as possible: of the ways a team-mate reaches first
     (if any, else of all), the one on which the ball is met furthest from our goal; and whether
     a team-mate reaches it first.
@@ -250,7 +226,7 @@ def best_clearance(
     for degrees in CLEAR_ANGLES:
         heading = math.radians(degrees)
         target = (ball[0] + CLEAR_AIM * math.cos(heading), ball[1] + CLEAR_AIM * math.sin(heading))
-        path = reach.kicked_path(ball, target, min(CLEAR_SPEED, most))
+        path = reach.kicked_path(ball, target, CLEAR_SPEED)
         inside = next((n for n, (_, y) in enumerate(path) if abs(y) > FIELD.width / 2), len(path))
         path = path[: max(1, inside)]
         ours, theirs = reach.first_cycles(path, ours_all), reach.first_cycles(path, opponents)

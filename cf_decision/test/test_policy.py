@@ -5,11 +5,11 @@ from __future__ import annotations
 import math
 
 from cf_decision.policy import decide
-from cf_decision.reach import BALL_SPEED_MAX, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path
+from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path
 from cf_decision.roles import Role, home_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line
-from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, touch_most
+from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot
 from cf_decision.without_ball import NEVER, choose_interceptor, marking
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
@@ -78,27 +78,6 @@ def test_pass_forward_to_a_team_mate_who_gets_there_first():
     assert d.method == "pass" and (d.action.to or d.action.target) is not None
     choice = best_pass(state((0.0, 0.0), players=players), (0.5, 0.0))
     assert choice.number == 10 and choice.gain > 10.0
-
-
-def test_a_forward_level_with_their_last_line_gets_the_ball_played_into_the_space_behind_it():
-    line = [opp(2, 3.0, -5.0), opp(3, 3.0, 25.0), opp(1, 50.0, 0.0, goalie=True)]
-    choice = best_pass(state((-10.5, 0.0), players=[mate(10, 2.0, 10.0), *line]), (-10.0, 0.0))
-    assert choice.number == 10 and choice.target is not None and choice.target[0] >= 15.0  # 12 m and more behind it
-
-
-def test_a_pressed_player_passes_only_as_fast_as_the_ball_where_it_lies_can_be_kicked():
-    players = [mate(10, 20.0, 0.0), opp(4, 10.0, 6.0), opp(5, -2.0, 1.5)]  # number 5 presses the ball
-    behind, laid = (-0.95, 0.0), (0.6, 0.0)  # at the edge behind the body; in front of it
-    assert touch_most(state((0.0, 0.0), players=players), (0.0, 0.0), behind) < 1.6
-    assert (
-        touch_most(state((0.0, 0.0), players=players[:2]), (0.0, 0.0), behind) == BALL_SPEED_MAX
-    )  # unpressed: laid first
-    for ball, number in ((laid, 10), (behind, None)):
-        most = touch_most(state((0.0, 0.0), players=players), (0.0, 0.0), ball)
-        choice = best_pass(state((0.0, 0.0), players=players), ball, most=most)
-        assert (choice and choice.number) == number  # the slow ball is number 4's
-        d = decide(state((0.0, 0.0), ball=ball, players=players), 7, 11, {})
-        assert (d.method == "pass" and "team-mate 10" in d.why) == (number == 10)
 
 
 def test_no_pass_an_opponent_reaches_first():
