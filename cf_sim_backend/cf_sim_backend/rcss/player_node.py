@@ -289,6 +289,10 @@ class RcssPlayerNode(GuardedNode, Node):
     def _on_start(self, skill) -> None:
         """A request's skill starts (ActionService agreed to it): the session carries it out."""
         self.session.start(skill)
+        if self.synch:
+            # In time: carried out this cycle; late: after (done), so from the next cycle on.
+            key = "requests_in_time" if self.waiting else "requests_late"
+            self.session.stats[key] = self.session.stats.get(key, 0) + 1
         if self.waiting:
             # The decision answered this cycle's perception: act now rather than wait out synch_wait.
             self.act_timer.cancel()
