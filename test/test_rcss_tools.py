@@ -67,6 +67,7 @@ def test_reasons_lose_their_numbers():
         reason("fastest to a contested ball (12 cycles): win it and go") == "fastest to a contested ball: win it and go"
     )
     assert reason("forward pass to team-mate 10") == "forward pass to team-mate"
+    assert reason("clear the ball @ target -12.0 25.0 ball -35.2 4.1") == "clear the ball"
 
 
 def test_where_each_team_had_the_ball_and_won_it_back_by_third_of_the_field(tmp_path):

@@ -43,7 +43,9 @@ class Outcome:
 
 
 def reason(text: str) -> str:
-    """A logged reason without its numbers: ``fastest to the ball (12 cycles)`` -> ``fastest to the ball``."""
+    """A logged reason without its numbers (nor the aim after `` @ ``): ``fastest to the ball (12 cycles)`` ->
+    ``fastest to the ball``."""
+    text = text.split(" @ ")[0]
     words = " ".join(_NUMBERS.sub("", re.sub(r"\(.*?\)", "", text)).split())
     return re.sub(r" ([:,])", r"\1", words)
 

@@ -54,6 +54,16 @@ def _agent_name(p: dict) -> str:
     return p["name"] or f"{p['team']}_{p['number']}_decision{'_standby' if p['standby'] else ''}"
 
 
+def _aim_text(state: WorldState, decision: Decision) -> str:
+    """`` @ target X Y ball X Y`` (own frame, as believed): set against the game log, it tells a
+    kick that went astray from a belief that was wrong. Empty without a target point."""
+    target = getattr(decision.action, "target", None)
+    ball = state.ball.positioning if state.ball else None
+    if target is None or ball is None:
+        return ""
+    return f" @ target {target.x:.1f} {target.y:.1f} ball {ball.x:.1f} {ball.y:.1f}"
+
+
 class DecisionNode(GuardedNode, Node):
     """Decision of one player (service class PlayerDecision). Parameters: DecisionParams."""
 
@@ -144,7 +154,7 @@ class DecisionNode(GuardedNode, Node):
             if decision.method in KICKING:
                 # One line per new way of playing the ball: what a match analysis needs, a few a minute.
                 self.requests.stats.chose(decision.why)
-                self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}")
+                self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}{_aim_text(state, decision)}")
             self._request(decision)
 
     def _request(self, decision: Decision) -> None:
