@@ -63,7 +63,7 @@ def test_choices_with_the_ball_are_counted_by_reason_without_their_numbers():
     assert stats.line().endswith("with the ball: forward pass to team-mate 2, fastest to a contested ball: win it 1")
 
 
-def test_the_log_line_of_a_kick_carries_its_aim_and_the_believed_ball():
+def test_the_log_line_of_a_kick_carries_its_aim_and_the_ball_and_opponents_as_believed():
     def opp(x, y, sigma):
         return Player(which_team=Team.OPP, positioning=AbsolutePositioning(x=x, y=y, sigma_x=sigma, sigma_y=sigma))
 
