@@ -17,7 +17,6 @@ Two decision components for one player may run: only the one registered with
 
 from __future__ import annotations
 
-import math
 import sys
 import time
 
@@ -35,7 +34,7 @@ from cf_lang.ontology import Team, WorldState
 from cf_lang.sexp import dumps
 
 from .policy import decide
-from .requests import ActionRequests
+from .requests import ActionRequests, aim_text
 from .set_piece import KICKING, SetPieceTaker
 from .situation import Decision
 from .without_ball import NEVER, state_eta
@@ -53,25 +52,6 @@ PERCEPTION_SILENCE = 1.0  # seconds without an inform before the perception prov
 
 def _agent_name(p: dict) -> str:
     return p["name"] or f"{p['team']}_{p['number']}_decision{'_standby' if p['standby'] else ''}"
-
-
-AIM_OPPONENTS_WITHIN = 30.0  # m from the ball: the opponents a kick's log line lists
-
-
-def _aim_text(state: WorldState, decision: Decision) -> str:
-    """`` @ target X Y ball X Y opp X Y S, ...`` (own frame, as believed; S: the position's standard
-    deviation, which grows while a player goes unseen): set against the game log, it tells a kick
-    that went astray from a choice made on a wrong picture. Empty without a target point."""
-    target = getattr(decision.action, "target", None)
-    ball = state.ball.positioning if state.ball else None
-    if target is None or ball is None:
-        return ""
-    seen = []
-    for p in state.players:
-        pos = p.positioning
-        if p.which_team is Team.OPP and pos and math.hypot(pos.x - ball.x, pos.y - ball.y) <= AIM_OPPONENTS_WITHIN:
-            seen.append(f"{pos.x:.1f} {pos.y:.1f} {pos.sigma_x or 0.0:.1f}")
-    return f" @ target {target.x:.1f} {target.y:.1f} ball {ball.x:.1f} {ball.y:.1f} opp {', '.join(seen)}"
 
 
 class DecisionNode(GuardedNode, Node):
@@ -164,7 +144,7 @@ class DecisionNode(GuardedNode, Node):
             if decision.method in KICKING:
                 # One line per new way of playing the ball: what a match analysis needs, a few a minute.
                 self.requests.stats.chose(decision.why)
-                self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}{_aim_text(state, decision)}")
+                self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}{aim_text(state, decision)}")
             self._request(decision)
 
     def _request(self, decision: Decision) -> None:

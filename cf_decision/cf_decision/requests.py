@@ -16,7 +16,9 @@ from dataclasses import dataclass, field
 
 from pydantic import BaseModel
 
-from cf_lang.ontology import AbsolutePositioning
+from cf_lang.ontology import AbsolutePositioning, Team, WorldState
+
+from .situation import Decision, dist, xy
 
 POSITION_TOLERANCE = 1.0  # m: targets closer than this are one target (a player is ~0.6 m wide)
 ANGLE_TOLERANCE = 0.1  # rad (about 6 degrees)
@@ -106,3 +108,22 @@ class ActionRequests:
             self.stats.done += 1
         else:
             self.stats.failed += 1
+
+
+AIM_OPPONENTS_WITHIN = 30.0  # m from the ball: the opponents a kick's log line lists
+
+
+def aim_text(state: WorldState, decision: Decision) -> str:
+    """`` @ target X Y ball X Y opp X Y S, ...`` (own frame, as believed; S: the position's standard
+    deviation, which grows while a player goes unseen): set against the game log, it tells a kick
+    that went astray from a choice made on a wrong picture. Empty without a target point."""
+    target = getattr(decision.action, "target", None)
+    ball = state.ball.positioning if state.ball else None
+    if target is None or ball is None:
+        return ""
+    seen = [
+        f"{p.positioning.x:.1f} {p.positioning.y:.1f} {p.positioning.sigma_x or 0.0:.1f}"
+        for p in state.players
+        if p.which_team is Team.OPP and p.positioning and dist(xy(p.positioning), xy(ball)) <= AIM_OPPONENTS_WITHIN
+    ]
+    return f" @ target {target.x:.1f} {target.y:.1f} ball {ball.x:.1f} {ball.y:.1f} opp {', '.join(seen)}"

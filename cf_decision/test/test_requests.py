@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from cf_decision.decision_node import _aim_text
-from cf_decision.requests import ActionRequests, RequestStats, same_action
+from cf_decision.requests import ActionRequests, RequestStats, aim_text, same_action
 from cf_decision.situation import Decision
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, Team, WorldState
 from cf_lang.ontology import actions as act
@@ -71,6 +70,6 @@ def test_the_log_line_of_a_kick_carries_its_aim_and_the_ball_and_opponents_as_be
     ball = Ball(positioning=AbsolutePositioning(x=-35.24, y=4.1))
     state = WorldState(time=5, ball=ball, players=players, game=Game(time=5))
     clear = Decision("pass", act.Pass(target=AbsolutePositioning(x=-12.0, y=25.0), power=100.0), "clear the ball")
-    assert _aim_text(state, clear) == " @ target -12.0 25.0 ball -35.2 4.1 opp -30.0 2.0 0.4, -20.0 -10.0 3.3"
-    assert _aim_text(state, Decision("intercept", act.Intercept(), "fastest")) == ""  # no target point
-    assert _aim_text(WorldState(time=5, game=Game(time=5)), clear) == ""  # no ball believed
+    assert aim_text(state, clear) == " @ target -12.0 25.0 ball -35.2 4.1 opp -30.0 2.0 0.4, -20.0 -10.0 3.3"
+    assert aim_text(state, Decision("intercept", act.Intercept(), "fastest")) == ""  # no target point
+    assert aim_text(WorldState(time=5, game=Game(time=5)), clear) == ""  # no ball believed
