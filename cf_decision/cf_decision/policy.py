@@ -15,7 +15,8 @@ What it does, in order:
   in our half, clear it long towards the wing; in theirs, shoot when within
   LONG_SHOT_RANGE, else dribble into space, else any safe pass, else take it
   on towards the goal;
-- at our set piece the player with the ball passes (backwards if need be) or
+- at our set piece the player with the ball first looks for the opponents near
+  it he has not seen lately; then he passes (backwards if need be) or
   kicks long, never dribbles, and then leaves the ball to others until
   somebody else has touched it (the rules forbid the taker a second touch);
 - the team-mate chosen to go for the ball (fastest to it; ties to the lower

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from cf_lang.ontology import FIELD, Player, Team, WorldState
+from cf_lang.ontology import FIELD, Ball, Player, Team, WorldState
 from cf_lang.ontology import actions as act
 
 from . import reach
@@ -24,6 +24,9 @@ OPEN_AHEAD = 15.0  # m: none this far along the way: a dribble may go at full sp
 CLEAR_ANGLES = range(-70, 71, 10)  # degrees off straight up the field a clearance may take
 CLEAR_AIM = 20.0  # m: the clearance aims at a point this far along its way (inside the field)
 CLEAR_SPEED = 2.0  # m/cycle: what a hurried touch of a ball not placed for it gives (not the 2.7 most)
+LOOK_AGE = 2  # cycles: at our set piece, an opponent seen longer ago than this is looked for first,
+LOOK_RADIUS = 30.0  # m: if he was this close to the ball and
+LOOK_BEHIND = 5.0  # m: at most this much nearer our goal than the ball
 
 
 def win_the_ball(ball: tuple[float, float], why: str) -> Decision:
@@ -44,6 +47,11 @@ def win_the_ball(ball: tuple[float, float], why: str) -> Decision:
 def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
     """Our set piece: one touch only, so shoot, pass (backwards if need be), or kick long into their half."""
     ball = xy(state.ball.positioning) if state.ball and state.ball.positioning else me
+    if unseen_near(state, ball):
+        # A set piece leaves time to look: against a real team most of the men near the ball were
+        # not believed within 3 m of where they stood when the taker chose, and every pass that
+        # went to an opponent went to one of those (docs/performance.md, session 17).
+        return Decision("turnToObject", act.TurnToObject(obj=Ball()), "set piece: look first")
     if dist(ball, GOAL) <= SHOOT_RANGE:
         target, _ = shot_margin(state, ball)  # the corner the keeper is furthest from
         return Decision("shoot", act.Shoot(target=point(*target), power=100.0), "set piece near goal")
@@ -52,6 +60,22 @@ def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
         return pass_to(choice, "set piece")
     target = point(min(FIELD_HALF_LENGTH - 10.0, me[0] + 35.0), me[1] * 0.5)
     return Decision("pass", act.Pass(target=target, power=100.0), "set piece: kick long")
+
+
+def unseen_near(state: WorldState, ball: tuple[float, float]) -> bool:
+    """An opponent near the ball, not behind it, was seen more than LOOK_AGE cycles ago.
+
+    The wait ends: the head sweeps while the body faces the ball, and the belief forgets a man
+    the view shows is not where he was (or after its memory).
+    """
+    return any(
+        p.which_team is Team.OPP
+        and p.positioning is not None
+        and (p.age or 0) > LOOK_AGE
+        and dist(xy(p.positioning), ball) <= LOOK_RADIUS
+        and p.positioning.x >= ball[0] - LOOK_BEHIND
+        for p in state.players
+    )
 
 
 def best_shot(state: WorldState, ball: tuple[float, float]) -> tuple[float, float] | None:

@@ -149,6 +149,19 @@ def test_at_our_set_piece_pass_back_or_kick_long_never_dribble():
     assert d.method == "dribble"  # in play_on the same player dribbles
 
 
+def test_at_our_set_piece_the_taker_first_looks_for_opponents_near_the_ball_he_has_not_seen_lately():
+    ahead = opp(4, 12.0, 28.0).model_copy(update={"age": 5})
+    kick_in = state((0.0, 30.0), ball=(0.5, 30.0), players=[ahead], mode=PlayMode.KICK_IN_OUR)
+    d = decide(kick_in, 7, 11, {})
+    assert d.method == "turnToObject" and d.why == "set piece: look first"
+    seen = kick_in.model_copy(update={"players": (ahead.model_copy(update={"age": 1}),)})
+    assert decide(seen, 7, 11, {}).method == "pass"  # seen just now: he kicks
+    behind = opp(4, -12.0, 28.0).model_copy(update={"age": 5})  # 12 m nearer our goal: no threat to the kick
+    assert decide(kick_in.model_copy(update={"players": (behind,)}), 7, 11, {}).method == "pass"
+    in_play = kick_in.model_copy(update={"game": Game(time=100, play_mode=PlayMode.PLAY_ON)})
+    assert decide(in_play, 7, 11, {}).method != "turnToObject"  # in play there is no time to wait
+
+
 def test_the_taker_of_our_set_piece_leaves_the_ball_until_someone_else_touched_it():
     taker = SetPieceTaker()
     kick_in = state((0.0, 30.0), ball=(0.5, 30.0), mode=PlayMode.KICK_IN_OUR)
