@@ -6,7 +6,8 @@ team-mates said (who goes for the ball). Output is an ontology action for
 ``(exec Player <method> ...)``. Nothing here knows the back-end.
 
 What it does, in order:
-- before a kick-off: take the formation position;
+- before a kick-off: take the kick-off position (the formation, wide forwards
+  out wide), and keep it at our kick-off until the ball is played;
 - goalkeeper: catch a ball in reach, clear a kickable ball, close down an
   opponent through on goal, else guard the goal on the line between ball and
   goal centre, further out the further the ball;
@@ -32,7 +33,7 @@ from cf_lang.ontology import PlayMode, WorldState
 from cf_lang.ontology import actions as act
 
 from .goalkeeper import goalkeeper
-from .roles import Role, home_position, role_of
+from .roles import Role, home_position, kick_off_position, role_of
 from .situation import KICKABLE, Decision, dist, offside_line, opponent_on_ball, play_mode, point, their_ball, xy
 from .with_ball import win_the_ball, with_ball
 from .without_ball import (
@@ -64,8 +65,9 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
     ball = xy(state.ball.positioning) if state.ball and state.ball.positioning else None
 
     if mode in (PlayMode.BEFORE_KICK_OFF, PlayMode.GOAL_OUR, PlayMode.GOAL_OPP, PlayMode.HALF_TIME):
-        x, y = home_position(number, team_size, ball_x=0.0)
-        return Decision("move", act.Move(target=point(min(x, -1.0), y)), "formation before kick-off")
+        return Decision(
+            "move", act.Move(target=point(*kick_off_position(number, team_size))), "formation before kick-off"
+        )
     if ball is None:
         return Decision("turn", act.Turn(angle=1.0), "look for the ball")
     if mode.value.endswith("_opp") and mode is not PlayMode.PLAY_ON:
@@ -83,6 +85,10 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         if contested:
             return win_the_ball(ball, f"fastest to a contested ball ({my_eta} cycles)")
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
+    if mode is PlayMode.KICK_OFF_OUR:
+        # The taker may look before he kicks: a wide forward drifting in meanwhile closes the space
+        # the kick-off's pass is meant for.
+        return hold(me_pos, kick_off_position(number, team_size), "kick-off: keep the kick-off place")
     if may_touch and contested and dist(me_pos, ball) <= TACKLE_REACH:
         # Whoever is this close to an opponent's ball has a tackle: the skill takes it when it is
         # near-sure (else closes in). Markers and holders used to let such balls go by.

@@ -5,6 +5,8 @@ Positions are in the player's own frame (x towards the opponents' goal).
 
 from __future__ import annotations
 
+import math
+
 from cf_lang.ontology import Role
 
 # 4-3-3 for eleven; smaller teams take the first n entries of this order.
@@ -21,6 +23,7 @@ _FORMATION: dict[int, tuple[Role, float, float]] = {
     10: (Role.FORWARD, 5.0, 0.0),
     11: (Role.FORWARD, 2.0, -16.0),
 }
+KICK_OFF_WING = 26.0  # m from the middle: where the wide forwards wait for a kick-off
 # For small teams: goalkeeper, then a forward, a defender, a midfielder, ...
 _SMALL_ORDER = [1, 10, 3, 7, 9, 4, 8, 11, 2, 6, 5]
 
@@ -53,3 +56,15 @@ def home_position(
         hx = min(hx, max(0.0, offside_x - 1.0))
     hy = y + 0.25 * ball_y
     return (hx, max(-30.0, min(30.0, hy)))
+
+
+def kick_off_position(number: int, team_size: int = 11) -> tuple[float, float]:
+    """Where a player stands for a kick-off: the formation in our half, the wide forwards out wide.
+
+    A base team packs its kick-off into the middle (HELIOS base: ten men within 10 m of it), so a
+    forward waiting near the side line can be found with a pass into the space in front of him.
+    """
+    x, y = home_position(number, team_size, ball_x=0.0)
+    if role_of(number, team_size) is Role.FORWARD and y != 0.0:
+        y = math.copysign(KICK_OFF_WING, y)
+    return (min(x, -1.0), y)

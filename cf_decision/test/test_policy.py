@@ -6,7 +6,7 @@ import math
 
 from cf_decision.policy import decide
 from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path
-from cf_decision.roles import Role, home_position, role_of
+from cf_decision.roles import Role, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line
 from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot
@@ -115,6 +115,25 @@ def test_intercept_or_hold_position():
 def test_before_kick_off_take_the_formation():
     d = decide(state((10.0, 10.0), ball=(0.0, 0.0), mode=PlayMode.BEFORE_KICK_OFF), 3, 11, {})
     assert isinstance(d.action, act.Move) and d.action.target.x < 0
+
+
+def test_at_our_kick_off_the_wide_forwards_wait_out_wide_and_the_pass_finds_one_in_space():
+    wide = decide(state((10.0, 10.0), ball=(0.0, 0.0), mode=PlayMode.BEFORE_KICK_OFF), 9, 11, {})
+    assert isinstance(wide.action, act.Move) and wide.action.target.x < 0 and abs(wide.action.target.y) >= 25.0
+    assert abs(home_position(9, ball_x=0.0)[1]) < 20.0  # in play he comes back in
+    # HELIOS base's kick-off: ten men in two rows of five, within 10 m of the middle.
+    rows = [opp(2 + i, x, y) for i, (x, y) in enumerate((x, y) for x in (15.0, 25.0) for y in (-10, -5, 0, 5, 10))]
+    left, right = kick_off_position(9, 11), kick_off_position(11, 11)
+    players = [*rows, mate(9, *left), mate(11, *right), mate(7, -18.0, 0.0)]
+    waiting = decide(
+        state(right, ball=(0.0, 0.0), players=players, mode=PlayMode.KICK_OFF_OUR, number=11), 11, 11, {10: 1}
+    )
+    assert waiting.method == "turnToObject"  # he keeps his place while the taker looks
+    kick = decide(
+        state((-0.5, 0.0), ball=(0.0, 0.0), players=players, mode=PlayMode.KICK_OFF_OUR, number=10), 10, 11, {}
+    )
+    assert kick.method == "pass" and "team-mate 9" in kick.why  # into the space in front of a wide forward
+    assert kick.action.target.x > 0.0 and abs(kick.action.target.y) > 20.0
 
 
 def test_goalkeeper_guards_catches_clears():
