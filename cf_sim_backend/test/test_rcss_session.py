@@ -211,23 +211,6 @@ def test_a_player_seen_without_a_number_is_the_known_player_nearest_him():
     assert [(p.which_team, p.player_number, p.age) for p in near] == [(Team.OPP, 6, 0)]
 
 
-def test_a_player_the_view_cone_should_show_and_does_not_is_forgotten():
-    """The server shows every player in the cone: one not there where we believed him has gone."""
-    b = _belief()
-
-    def look(t, width, seen=""):
-        b.update(parse(f"(sense_body {t} (view_mode high {width}) (speed 0 0) (head_angle 0))"))
-        b.update(parse(f"(see {t} {SEE_CENTRE} {seen})"))
-        return sorted((p.player_number, p.age) for p in world_state(b).players if p.which_team is Team.OPP)
-
-    # Number 5 10 degrees off the head, number 7 45 degrees off.
-    assert look(10, "normal", '((p "Opp" 5) 10 -10 0 0 0 0) ((p "Opp" 7) 15 45 0 0 0 0)') == [(5, 0), (7, 0)]
-    assert look(11, "narrow", '((p "Opp" 5) 10 -10 0 0 0 0)') == [(5, 0), (7, 1)]  # 7 is outside a narrow cone
-    assert look(12, "narrow") == [(7, 2)]  # 5 should be in view and is not: gone
-    # 7 is in view again and not there; the man without a number is too far from him to be him.
-    assert look(13, "normal", '((p "Opp") 14 -40)') == [(None, 0)]
-
-
 def test_a_right_side_player_sees_the_field_from_its_own_goal():
     b = _belief("r", 2)
     b.update(parse("(sense_body 0 (speed 0 0) (head_angle 0))"))

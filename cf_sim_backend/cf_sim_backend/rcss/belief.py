@@ -8,8 +8,7 @@ A :class:`Belief` reads every server message (init, params, sense_body, see, hea
   it gives one), rolled on with the ball's decay while not seen; its age counts cycles since seen;
 - the other players by team and number, kept with growing uncertainty until :data:`PLAYER_MEMORY`
   cycles old; a sighting without a number updates the known player nearest it, if one is near
-  enough, else it lives for one see; a player the view cone should have shown where we believed
-  him, and did not, is forgotten at once;
+  enough, else it lives for one see;
 - the play mode (referee) and the score.
 
 It speaks two frames. The server's: y towards the bottom side line, angles positive clockwise. The
@@ -376,7 +375,6 @@ class Belief:
             else:
                 self.anonymous.append((team, track))
         self._identify(see.time)
-        self._forget_unseen(see.time)
         if self.ball is not None and self.ball.seen != see.time and self._should_see(self.ball):
             # The server shows the ball wherever it is in the view cone, and within visible_distance
             # all around: not seen there, it is not where we believed (taken, kicked, placed).
@@ -404,14 +402,6 @@ class Belief:
             best.x, best.y, best.vx, best.vy = track.x, track.y, track.vx, track.vy
             best.sigma, best.seen = track.sigma, now
         self.anonymous = left
-
-    def _forget_unseen(self, now: int) -> None:
-        """Forget the players this see should have shown where we believed them, and did not.
-
-        The server shows every player in the view cone: one not there has gone elsewhere. Kept, he
-        was a man where nobody stood, and a pass or a run that way was not tried.
-        """
-        self.players = {k: t for k, t in self.players.items() if t.seen == now or not self._should_see(t)}
 
     def _should_see(self, track: Track) -> bool:
         """Whether a see would show an object at ``track`` (well inside the cone, or close all around)."""
