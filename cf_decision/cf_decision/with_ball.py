@@ -65,8 +65,8 @@ def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
 def unseen_near(state: WorldState, ball: tuple[float, float]) -> bool:
     """An opponent near the ball, not behind it, was seen more than LOOK_AGE cycles ago.
 
-    The wait ends: the head sweeps while the body faces the ball, and the belief forgets a man
-    the view shows is not where he was (or after its memory).
+    The wait ends: the head sweeps while the body faces the ball and sees them again, or the
+    belief's memory lets a man go who has left.
     """
     return any(
         p.which_team is Team.OPP
