@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from cf_lang.ontology import FIELD, Ball, Player, Team, WorldState
+from cf_lang.ontology import FIELD, Ball, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
 from . import reach
@@ -24,6 +24,8 @@ OPEN_AHEAD = 15.0  # m: none this far along the way: a dribble may go at full sp
 CLEAR_ANGLES = range(-70, 71, 10)  # degrees off straight up the field a clearance may take
 CLEAR_AIM = 20.0  # m: the clearance aims at a point this far along its way (inside the field)
 CLEAR_SPEED = 2.0  # m/cycle: what a hurried touch of a ball not placed for it gives (not the 2.7 most)
+LANE_LENGTH = 15.0  # m: a dribble's lane: the opponents this close and
+LANE_ANGLE = 30.0  # degrees: this far off its way are the ones it runs into
 LOOK_AGE = 2  # cycles: at our set piece, an opponent seen longer ago than this is looked for first,
 LOOK_RADIUS = 30.0  # m: if he was this close to the ball and
 LOOK_BEHIND = 5.0  # m: at most this much nearer our goal than the ball
@@ -63,19 +65,25 @@ def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
 
 
 def unseen_near(state: WorldState, ball: tuple[float, float]) -> bool:
-    """An opponent near the ball, not behind it, was seen more than LOOK_AGE cycles ago.
+    """An opponent near the ball, not behind it, was seen more than LOOK_AGE cycles ago; or, at our
+    kick-off, one is believed more than LOOK_BEHIND behind the ball, however lately seen.
 
-    The wait ends: the head sweeps while the body faces the ball and sees them again, or the
-    belief's memory lets a man go who has left.
+    At a kick-off every opponent stands in his own half, so a man believed in ours is where he was
+    before the goal (the goal stops the clock, so he looks fresh), and the men in front of the
+    taker are unknown: after a goal the taker had seen none of them, did not look, and passed into
+    the middle. The wait ends: the head sweeps while the body faces the ball and sees them again,
+    or the belief's memory (30 cycles, and the clock runs at a kick-off) lets a man go.
     """
-    return any(
-        p.which_team is Team.OPP
-        and p.positioning is not None
-        and (p.age or 0) > LOOK_AGE
-        and dist(xy(p.positioning), ball) <= LOOK_RADIUS
-        and p.positioning.x >= ball[0] - LOOK_BEHIND
-        for p in state.players
-    )
+    kick_off = play_mode(state) is PlayMode.KICK_OFF_OUR
+    for p in state.players:
+        if p.which_team is not Team.OPP or p.positioning is None:
+            continue
+        behind = p.positioning.x < ball[0] - LOOK_BEHIND
+        if kick_off and behind:
+            return True
+        if (p.age or 0) > LOOK_AGE and dist(xy(p.positioning), ball) <= LOOK_RADIUS and not behind:
+            return True
+    return False
 
 
 def best_shot(state: WorldState, ball: tuple[float, float]) -> tuple[float, float] | None:
@@ -182,19 +190,37 @@ def dribble_speed(state: WorldState, me: tuple[float, float], towards: tuple[flo
     return 70.0
 
 
-def dribble_room(state: WorldState, me: tuple[float, float]) -> tuple[float, float] | None:
-    """A point 10 m away, towards the goal or up to 60 degrees off it, with space on the way (the straightest).
+def dribble_room(state: WorldState, me: tuple[float, float], most_room: bool = True) -> tuple[float, float] | None:
+    """A point 10 m away, towards the goal or up to 60 degrees off it, with space on the way: the
+    straightest (``most_room`` False), or the one with the most room.
 
-    In our own third only straight ahead: beating a man there risks a goal.
+    Space: nobody within 2.5 m, nor within 6 m and 60 degrees of the way (:func:`space_ahead`).
+    Room: the fewest opponents in the lane (within LANE_LENGTH and LANE_ANGLE degrees of the way),
+    then the nearest of them furthest away; among equals the straightest way, the middle of the
+    field first. Taking the first way with space, middle first, led a wide forward into a block of men
+    10 m on rather than up the empty wing. In our own third only straight ahead: beating a man
+    there risks a goal.
     """
+    opponents = [pos for pos, _ in sides(state)[1]]
     toward = math.atan2(GOAL[1] - me[1], GOAL[0] - me[0])
-    for off in (0.0,) if me[0] < -FIELD_HALF_LENGTH / 3 else (0.0, 30.0, -30.0, 60.0, -60.0):
-        heading = toward + math.radians(off if me[1] <= 0 else -off)  # try the middle of the field first
+    best, best_key = None, None
+    offs = (0.0,) if me[0] < -FIELD_HALF_LENGTH / 3 else (0.0, 30.0, -30.0, 60.0, -60.0)
+    for order, off in enumerate(offs):
+        heading = toward + math.radians(off if me[1] <= 0 else -off)  # ties: the middle of the field first
         x = min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0 * math.cos(heading))
         y = max(-FIELD.width / 2 + 3.0, min(FIELD.width / 2 - 3.0, me[1] + 10.0 * math.sin(heading)))
-        if dist(me, (x, y)) > 4.0 and space_ahead(state, me, (x, y)):
-            return (x, y)
-    return None
+        if dist(me, (x, y)) <= 4.0 or not space_ahead(state, me, (x, y)):
+            continue
+        lane = [
+            d
+            for d, bearing in ((dist(me, pos), math.atan2(pos[1] - me[1], pos[0] - me[0])) for pos in opponents)
+            if d < LANE_LENGTH and abs(math.remainder(bearing - heading, math.tau)) < math.radians(LANE_ANGLE)
+        ]
+        key = (-len(lane), min(lane, default=LANE_LENGTH)) if most_room else (0, 0.0)
+        key += (-abs(off), -order)
+        if best_key is None or key > best_key:
+            best, best_key = (x, y), key
+    return best
 
 
 def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
@@ -209,10 +235,9 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     safe = best_pass(state, ball)
     if safe is not None and safe.gain >= 10.0:
         return pass_to(safe, "forward pass")
-    space = dribble_room(state, me)
-    speed = dribble_speed(state, me, space) if space is not None else 0.0
-    if speed >= 100.0:
-        return Decision("dribble", act.Dribble(target=point(*space), speed=speed), "open run: carry it fast")
+    straight = dribble_room(state, me, most_room=False)
+    if straight is not None and dribble_speed(state, me, straight) >= 100.0:
+        return Decision("dribble", act.Dribble(target=point(*straight), speed=100.0), "open run: carry it fast")
     if me[0] < 0.0:
         # In our half without a forward pass or an open run: clear it. Against real teams a short
         # pass or a dribble there reached a team-mate about one time in six and left the ball where
@@ -227,8 +252,11 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     if kept:
         # A close-control dribble here kept the ball about one time in ten (docs/decision.md).
         return Decision("pass", act.Pass(target=point(*aim), power=100.0), "kick it into space for a team-mate")
+    space = dribble_room(state, me) if straight is not None else None
     if space is not None:
-        return Decision("dribble", act.Dribble(target=point(*space), speed=speed), "space ahead: carry it")
+        # At close control the way is chosen for room: the straightest, into a block of men 10 m
+        # on, was lost within a few cycles against HELIOS base (docs/decision.md).
+        return Decision("dribble", act.Dribble(target=point(*space), speed=70.0), "space ahead: carry it")
     if safe is not None:
         return pass_to(safe, "safe pass")
     goal_ward = point(min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0), me[1] * 0.7)

@@ -9,7 +9,7 @@ from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_c
 from cf_decision.roles import Role, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line
-from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot
+from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, dribble_room
 from cf_decision.without_ball import NEVER, choose_interceptor, marking
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
@@ -181,6 +181,18 @@ def test_at_our_set_piece_the_taker_first_looks_for_opponents_near_the_ball_he_h
     assert decide(in_play, 7, 11, {}).method != "turnToObject"  # in play there is no time to wait
 
 
+def test_at_our_kick_off_after_a_goal_the_taker_looks_until_nobody_is_believed_in_our_half():
+    # The goal stopped the clock: the scorers are believed near our goal, as fresh as a cycle ago.
+    scorers = [opp(n, -40.0, y).model_copy(update={"age": 1}) for n, y in ((9, 3.0), (10, -4.0))]
+    kick_off = state((-0.3, 0.0), ball=(0.0, 0.0), players=scorers, mode=PlayMode.KICK_OFF_OUR, number=10)
+    d = decide(kick_off, 10, 11, {})
+    assert d.method == "turnToObject" and d.why == "set piece: look first"
+    in_front = [opp(n, 15.0, y).model_copy(update={"age": 0}) for n, y in ((9, 3.0), (10, -4.0))]
+    assert decide(kick_off.model_copy(update={"players": tuple(in_front)}), 10, 11, {}).method == "pass"
+    kick_in = kick_off.model_copy(update={"game": Game(time=100, play_mode=PlayMode.KICK_IN_OUR)})
+    assert decide(kick_in, 10, 11, {}).method == "pass"  # at other set pieces men behind the ball may be there
+
+
 def test_the_taker_of_our_set_piece_leaves_the_ball_until_someone_else_touched_it():
     taker = SetPieceTaker()
     kick_in = state((0.0, 30.0), ball=(0.5, 30.0), mode=PlayMode.KICK_IN_OUR)
@@ -300,6 +312,19 @@ def test_a_tired_player_walks_to_its_spot():
 def test_with_a_man_in_the_way_carry_it_past_him_to_the_side():
     d = decide(state((10.0, -5.0), ball=(10.5, -5.0), players=[opp(4, 14.0, -5.5)]), 9, 11, {})
     assert d.method == "dribble" and d.action.target.y > -5.0  # round him, towards the middle
+
+
+def test_a_wide_dribbler_takes_the_way_with_the_most_room_not_the_first_free_one():
+    # A wide forward in their half; HELIOS base's block is 10 m on towards the goal, the wing is empty.
+    block = [opp(2 + i, x, y) for i, (x, y) in enumerate(((20.0, 18.0), (21.0, 12.0), (24.0, 6.0)))]
+    me = (10.0, 25.0)
+    space = dribble_room(state(me, ball=(10.5, 25.0), players=block), me)
+    assert space is not None and space[1] >= 24.0  # up the wing, not into the block
+    # Nobody near: the straightest way, towards the goal.
+    free = dribble_room(state(me, ball=(10.5, 25.0)), me)
+    assert free is not None and free[1] < 25.0 - 4.0
+    # A man within 2.5 m: no dribble at all.
+    assert dribble_room(state(me, ball=(10.5, 25.0), players=[opp(2, 11.5, 23.5)]), me) is None
 
 
 def test_on_our_ball_forwards_wait_on_their_last_line():
