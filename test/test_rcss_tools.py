@@ -9,6 +9,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from rcss_ball_use import ball_use, reason, table, territory, territory_table
 from rcss_series import again, match_stats, read_rcg
+from rcss_set_pieces import kind_of, set_pieces
+from rcss_set_pieces import table as set_piece_table
 
 
 def show(t: int, ball_x: float, kicks: dict[tuple[str, int], int], where: dict[tuple[str, int], float]) -> str:
@@ -122,3 +124,46 @@ def test_idle_cycles_at_the_ball_while_his_own_tackle_holds_him_are_told_apart(t
     (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
     # frame 1 idle and free; 2: he tackles; 3 and 4 idle, held (frames 3-12); 13 idle, free again
     assert match_stats(tmp_path / "m.rcg", "l")["idle"] == [4, 5, 2]
+
+
+def set_piece_log(tmp: Path, cf_side: str) -> Path:
+    """CF kicks off from 1 m behind the ball; its 9 takes the pass at x = 20, their 3 wins it at 25."""
+    sign = 1.0 if cf_side == "l" else -1.0
+    us, them = cf_side, "r" if cf_side == "l" else "l"
+    kicks = {(us, 10): 0, (us, 9): 0, (them, 3): 0}
+    x, modes = 0.0, {1: f"kick_off_{us}", 2: "play_on", 30: f"kick_in_{them}"}
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)" if us == "l" else "(team 1 PYRUS CF 0 0)"]
+    for t in range(1, 31):
+        if t in modes:
+            lines.append(f"(playmode {t} {modes[t]})")
+        if t == 2:
+            kicks[(us, 10)] += 1
+        elif 2 < t <= 12:
+            x += 2.0  # the pass rolls on to 20 m up the field
+        elif t == 13:
+            kicks[(us, 9)] += 1
+        elif t == 20:
+            kicks[(them, 3)] += 1
+        where = {(us, 10): (-1.0, 0.0), (us, 9): (20.0, 0.0), (them, 3): (25.0, 0.0)}
+        players = " ".join(
+            f"(({s} {n}) 0 0x1 {sign * x} {y} 0 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) "
+            f"(c {kicks[(s, n)]} 0 0 0 0 0 0 0 0 0 0 0))"
+            for (s, n), (x, y) in where.items()
+        )
+        at = 2.1 if t == 2 else x
+        lines.append(f"(show {t} ((b) {sign * at} 0 0 0) {players})")
+    (tmp / "m.rcg").write_text("\n".join(lines) + "\n")
+    return tmp / "m.rcg"
+
+
+def test_each_set_piece_of_ours_is_measured_by_its_kick_and_what_came_of_it(tmp_path):
+    for side in ("l", "r"):
+        rcg = set_piece_log(tmp_path, side)
+        (piece,) = set_pieces(rcg, "CF")
+        assert piece.kind == "kick_off" and piece.time == 2
+        assert abs(piece.speed - 2.1) < 1e-9 and abs(piece.taker_gap - 1.0) < 1e-9  # a weak kick from 1 m
+        assert piece.theirs_after == 18 and piece.furthest == 20.0  # theirs at t=20; ours up to 20 m
+        text = set_piece_table([piece], 150)
+        assert "| kick_off | 1 | 2.10 | 1.00 | 18 | 20.0 | 1 |" in text
+    assert kind_of("kick_in_l", "l") == "kick_in" and kind_of("kick_in_r", "l") is None
+    assert kind_of("free_kick_fault_l", "l") is None  # a fault is the other side's free kick, not ours
