@@ -144,7 +144,8 @@ def set_piece_log(tmp: Path, cf_side: str) -> Path:
             kicks[(us, 9)] += 1
         elif t == 20:
             kicks[(them, 3)] += 1
-        where = {(us, 10): (-1.0, 0.0), (us, 9): (20.0, 0.0), (them, 3): (25.0, 0.0)}
+        taker = (-1.0, 0.0) if t < 2 else (-0.4, 0.0)  # he runs on after his kick
+        where = {(us, 10): taker, (us, 9): (20.0, 0.0), (them, 3): (25.0, 0.0)}
         players = " ".join(
             f"(({s} {n}) 0 0x1 {sign * x} {y} 0 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) "
             f"(c {kicks[(s, n)]} 0 0 0 0 0 0 0 0 0 0 0))"

@@ -61,7 +61,7 @@ def set_pieces(rcg: Path, team: str = "CF", window: int = 150) -> list[SetPiece]
         kicker = [p for p in moved if p[0] == side and p[4] > kicks.get((p[0], p[1]), p[4])]
         if not kicker:
             continue  # the mode ended some other way (a drop ball, the goalkeeper's move)
-        taker = kicker[0]
+        taker = next(p for p in players if (p[0], p[1]) == (kicker[0][0], kicker[0][1]))  # where he kicked from
         theirs, furthest, last = None, forward * ball[0], kicks
         for t2, mode2, ball2, players2 in frames[i : i + window]:
             if mode2 != "play_on" and t2 > t:
