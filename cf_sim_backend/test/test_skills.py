@@ -184,23 +184,32 @@ def test_an_intercept_tackles_a_ball_an_opponent_holds_towards_their_goal():
     assert skill.step(loose.world, me).commands[0][0] != "tackle"
 
 
+def kick_commands(sim, skill, me, cycles):
+    """Run a kicking skill on the simulator: the kinds of command it sent, and the fastest the ball left.
+
+    Fails if the referee calls a free kick fault (a set piece's taker touched the ball twice).
+    """
+    kinds, speed = [], 0.0
+    for _ in range(cycles):
+        step = skill.step(sim.world, me)
+        for cmd in step.commands:
+            kinds.append(cmd[0])
+            sim.command(me.side, me.number, *cmd)
+        sim.step()
+        assert not sim.world.mode.startswith("free_kick_fault")
+        speed = max(speed, math.hypot(sim.world.ball.vx, sim.world.ball.vy) / sim.world.params.ball_decay)
+        if step.status == "done":
+            break
+    return kinds, speed
+
+
 def test_a_pass_from_a_ball_beside_the_body_is_laid_in_front_first_and_leaves_faster():
     def pass_from_the_side(collect: bool) -> tuple[list[str], float]:
         sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0))
         sim.world.ball.x, sim.world.ball.y = 0.1, 1.0  # at the edge of the kickable area, beside the body
         skill, me = skill_of(sim, Side.LEFT, 4, exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4))
         skill.collected = not collect
-        kinds, speed = [], 0.0
-        for _ in range(4):
-            step = skill.step(sim.world, me)
-            for cmd in step.commands:
-                kinds.append(cmd[0])
-                sim.command(Side.LEFT, 4, *cmd)
-            sim.step()
-            speed = max(speed, math.hypot(sim.world.ball.vx, sim.world.ball.vy) / sim.world.params.ball_decay)
-            if step.status == "done":
-                break
-        return kinds, speed
+        return kick_commands(sim, skill, me, 4)
 
     kinds, laid = pass_from_the_side(collect=True)
     assert kinds == ["kick", "kick"]
@@ -223,18 +232,7 @@ def test_the_taker_of_a_set_piece_steps_up_to_the_ball_and_touches_it_once():
         sim.world.ball.x, sim.world.ball.y = ball
         sim.world.mode = mode
         skill, me = skill_of(sim, Side.LEFT, 4, exec_("pass", ":to (Player :playerNumber 8 :whichTeam our)", 4))
-        kinds, speed = [], 0.0
-        for _ in range(8):
-            step = skill.step(sim.world, me)
-            for cmd in step.commands:
-                kinds.append(cmd[0])
-                sim.command(Side.LEFT, 4, *cmd)
-            sim.step()
-            assert not sim.world.mode.startswith("free_kick_fault")
-            speed = max(speed, math.hypot(sim.world.ball.vx, sim.world.ball.vy) / sim.world.params.ball_decay)
-            if step.status == "done":
-                break
-        return kinds, speed
+        return kick_commands(sim, skill, me, 8)
 
     # A kick-off taker 1 m behind the ball: one touch from there gives ~2.1 of the 2.7 wanted.
     kinds, stepped = set_piece_pass((1.0, 0.0), "kick_off_l")
