@@ -190,23 +190,23 @@ def dribble_speed(state: WorldState, me: tuple[float, float], towards: tuple[flo
     return 70.0
 
 
-def dribble_room(state: WorldState, me: tuple[float, float], most_room: bool = True) -> tuple[float, float] | None:
-    """A point 10 m away, towards the goal or up to 60 degrees off it, with space on the way: the
-    straightest (``most_room`` False), or the one with the most room.
+Way = tuple[tuple[float, float], tuple[int, float]]  # a dribble's target, and its room
+
+
+def free_ways(state: WorldState, me: tuple[float, float]) -> list[Way]:
+    """The points 10 m away, towards the goal or up to 60 degrees off it, with space on the way: the
+    straightest first (of two as straight, the one towards the middle of the field), each with its room.
 
     Space: nobody within 2.5 m, nor within 6 m and 60 degrees of the way (:func:`space_ahead`).
-    Room: the fewest opponents in the lane (within LANE_LENGTH and LANE_ANGLE degrees of the way),
-    then the nearest of them furthest away; among equals the straightest way, the middle of the
-    field first. Taking the first way with space, middle first, led a wide forward into a block of men
-    10 m on rather than up the empty wing. In our own third only straight ahead: beating a man
-    there risks a goal.
+    Room: (minus the opponents in the lane, the nearest of them): the lane is within LANE_LENGTH and
+    LANE_ANGLE degrees of the way. In our own third only straight ahead: beating a man there risks
+    a goal.
     """
     opponents = [pos for pos, _ in sides(state)[1]]
     toward = math.atan2(GOAL[1] - me[1], GOAL[0] - me[0])
-    best, best_key = None, None
-    offs = (0.0,) if me[0] < -FIELD_HALF_LENGTH / 3 else (0.0, 30.0, -30.0, 60.0, -60.0)
-    for order, off in enumerate(offs):
-        heading = toward + math.radians(off if me[1] <= 0 else -off)  # ties: the middle of the field first
+    ways = []
+    for off in (0.0,) if me[0] < -FIELD_HALF_LENGTH / 3 else (0.0, 30.0, -30.0, 60.0, -60.0):
+        heading = toward + math.radians(off if me[1] <= 0 else -off)
         x = min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0 * math.cos(heading))
         y = max(-FIELD.width / 2 + 3.0, min(FIELD.width / 2 - 3.0, me[1] + 10.0 * math.sin(heading)))
         if dist(me, (x, y)) <= 4.0 or not space_ahead(state, me, (x, y)):
@@ -216,11 +216,18 @@ def dribble_room(state: WorldState, me: tuple[float, float], most_room: bool = T
             for d, bearing in ((dist(me, pos), math.atan2(pos[1] - me[1], pos[0] - me[0])) for pos in opponents)
             if d < LANE_LENGTH and abs(math.remainder(bearing - heading, math.tau)) < math.radians(LANE_ANGLE)
         ]
-        key = (-len(lane), min(lane, default=LANE_LENGTH)) if most_room else (0, 0.0)
-        key += (-abs(off), -order)
-        if best_key is None or key > best_key:
-            best, best_key = (x, y), key
-    return best
+        ways.append(((x, y), (-len(lane), min(lane, default=LANE_LENGTH))))
+    return ways
+
+
+def roomiest(ways: list[Way]) -> tuple[float, float] | None:
+    """The way with the most room: the fewest opponents in its lane, then the nearest of them furthest
+    away; of equals the straightest.
+
+    Taking the straightest free way led a wide forward into a block of men 10 m on rather than up
+    the empty wing.
+    """
+    return max(ways, key=lambda way: way[1])[0] if ways else None  # max keeps the first of equals
 
 
 def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
@@ -235,7 +242,8 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     safe = best_pass(state, ball)
     if safe is not None and safe.gain >= 10.0:
         return pass_to(safe, "forward pass")
-    straight = dribble_room(state, me, most_room=False)
+    ways = free_ways(state, me)
+    straight = ways[0][0] if ways else None
     if straight is not None and dribble_speed(state, me, straight) >= 100.0:
         return Decision("dribble", act.Dribble(target=point(*straight), speed=100.0), "open run: carry it fast")
     if me[0] < 0.0:
@@ -252,7 +260,7 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     if kept:
         # A close-control dribble here kept the ball about one time in ten (docs/decision.md).
         return Decision("pass", act.Pass(target=point(*aim), power=100.0), "kick it into space for a team-mate")
-    space = dribble_room(state, me) if straight is not None else None
+    space = roomiest(ways)
     if space is not None:
         # At close control the way is chosen for room: the straightest, into a block of men 10 m
         # on, was lost within a few cycles against HELIOS base (docs/decision.md).

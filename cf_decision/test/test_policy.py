@@ -9,7 +9,7 @@ from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_c
 from cf_decision.roles import Role, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line
-from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, dribble_room
+from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, free_ways, roomiest
 from cf_decision.without_ball import NEVER, choose_interceptor, marking
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
@@ -318,13 +318,13 @@ def test_a_wide_dribbler_takes_the_way_with_the_most_room_not_the_first_free_one
     # A wide forward in their half; HELIOS base's block is 10 m on towards the goal, the wing is empty.
     block = [opp(2 + i, x, y) for i, (x, y) in enumerate(((20.0, 18.0), (21.0, 12.0), (24.0, 6.0)))]
     me = (10.0, 25.0)
-    space = dribble_room(state(me, ball=(10.5, 25.0), players=block), me)
+    space = roomiest(free_ways(state(me, ball=(10.5, 25.0), players=block), me))
     assert space is not None and space[1] >= 24.0  # up the wing, not into the block
     # Nobody near: the straightest way, towards the goal.
-    free = dribble_room(state(me, ball=(10.5, 25.0)), me)
+    free = roomiest(free_ways(state(me, ball=(10.5, 25.0)), me))
     assert free is not None and free[1] < 25.0 - 4.0
     # A man within 2.5 m: no dribble at all.
-    assert dribble_room(state(me, ball=(10.5, 25.0), players=[opp(2, 11.5, 23.5)]), me) is None
+    assert free_ways(state(me, ball=(10.5, 25.0), players=[opp(2, 11.5, 23.5)]), me) == []
 
 
 def test_on_our_ball_forwards_wait_on_their_last_line():
