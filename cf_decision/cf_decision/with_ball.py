@@ -179,15 +179,13 @@ def space_ahead(
     return True
 
 
-def dribble_speed(state: WorldState, me: tuple[float, float], towards: tuple[float, float]) -> float:
-    """Full speed (the ball pushed further ahead) on an open run; else close control.
+def open_run(state: WorldState, me: tuple[float, float], towards: tuple[float, float]) -> bool:
+    """Nobody within OPEN_NEAR, nor within OPEN_AHEAD and 45 degrees of the way: dribble at full speed
+    (the ball pushed further ahead), not at close control.
 
-    An open run: nobody within OPEN_NEAR, nor within OPEN_AHEAD and 45 degrees of the way. A
-    dribbler at close control moves at about two thirds of a runner's pace and is caught from behind.
+    A dribbler at close control moves at about two thirds of a runner's pace and is caught from behind.
     """
-    if space_ahead(state, me, towards, OPEN_NEAR, OPEN_AHEAD, 45.0):
-        return 100.0
-    return 70.0
+    return space_ahead(state, me, towards, OPEN_NEAR, OPEN_AHEAD, 45.0)
 
 
 Way = tuple[tuple[float, float], tuple[int, float]]  # a dribble's target, and its room
@@ -244,7 +242,7 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
         return pass_to(safe, "forward pass")
     ways = free_ways(state, me)
     straight = ways[0][0] if ways else None
-    if straight is not None and dribble_speed(state, me, straight) >= 100.0:
+    if straight is not None and open_run(state, me, straight):
         return Decision("dribble", act.Dribble(target=point(*straight), speed=100.0), "open run: carry it fast")
     if me[0] < 0.0:
         # In our half without a forward pass or an open run: clear it. Against real teams a short
