@@ -24,7 +24,9 @@ What it does, in order:
   number) intercepts; in our half, when an opponent has the ball, the second
   fastest stands in his way to our goal, facing the ball; any player within
   tackling reach of an opponent's ball goes for it; the others hold their
-  formation position, shifted with the ball, facing the ball.
+  formation position, shifted with the ball, facing the ball; while a team-mate
+  has the ball, a midfielder or forward stands where a pass reaches him safely,
+  within 4 m of that position and as far up as he may (support.py).
 """
 
 from __future__ import annotations
@@ -34,7 +36,20 @@ from cf_lang.ontology import actions as act
 
 from .goalkeeper import goalkeeper
 from .roles import Role, home_position, kick_off_position, role_of
-from .situation import KICKABLE, Decision, dist, offside_line, opponent_on_ball, play_mode, point, their_ball, xy
+from .situation import (
+    FIELD_HALF_LENGTH,
+    KICKABLE,
+    Decision,
+    dist,
+    offside_line,
+    opponent_on_ball,
+    our_ball,
+    play_mode,
+    point,
+    their_ball,
+    xy,
+)
+from .support import open_spot
 from .with_ball import win_the_ball, with_ball
 from .without_ball import (
     MARK_BALL_X,
@@ -50,6 +65,7 @@ from .without_ball import (
 )
 
 TACKLE_REACH = 2.0  # m: rcssserver's tackle_dist, the furthest a tackle reaches ahead of the body
+SUPPORT_SLACK = 1.5  # m: how near the open spot a supporting player goes (a lane is narrow)
 
 
 def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int], may_touch: bool = True) -> Decision:
@@ -102,7 +118,13 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
             return hold(me_pos, goal_side(mark), why, 1.0, tired(state))
     line = offside_line(state, ball)
     x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1], offside_x=line)
+    why = f"{role.value}: hold position"
     if role is Role.FORWARD and line is not None and not their_ball(state, ball) and ball[0] > -20.0:
         # Our ball: stand on their last line, ready to run onto a ball played behind it.
-        return hold(me_pos, (max(x, line - 1.0), y), "forward: on their last line", tired=tired(state))
-    return hold(me_pos, (x, y), f"{role.value}: hold position", tired=tired(state))
+        x, why = max(x, line - 1.0), "forward: on their last line"
+    if role in (Role.MIDFIELDER, Role.FORWARD) and our_ball(state, ball):
+        onside = line - 1.0 if line is not None else FIELD_HALF_LENGTH
+        spot = open_spot(state, me_pos, ball, (x, y), onside)
+        if spot != (x, y):
+            return hold(me_pos, spot, f"{role.value}: open for a pass", SUPPORT_SLACK, tired(state))
+    return hold(me_pos, (x, y), why, tired=tired(state))

@@ -80,6 +80,22 @@ def their_ball(state: WorldState, ball: tuple[float, float]) -> bool:
     return nearest_opp < 2.0 or nearest_opp < min(ours, default=1e9)
 
 
+def our_ball(state: WorldState, ball: tuple[float, float]) -> bool:
+    """A team-mate other than me has the ball at his feet (within 2 m), nearer it than any opponent."""
+    ours = min((dist(xy(p.positioning), ball) for p in _others(state, Team.OUR)), default=1e9)
+    theirs = min((dist(xy(p.positioning), ball) for p in _others(state, Team.OPP)), default=1e9)
+    return ours < 2.0 and ours < theirs
+
+
+def _others(state: WorldState, team: Team):
+    me = state.me.player_number if state.me else None
+    return (
+        p
+        for p in state.players
+        if p.which_team is team and p.positioning and not (team is Team.OUR and p.player_number == me)
+    )
+
+
 def offside_line(state: WorldState, ball: tuple[float, float]) -> float | None:
     """The x beyond which our attackers are offside: the second-last opponent's, or the ball's if further.
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from cf_decision.policy import decide
-from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path
+from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
 from cf_decision.roles import Role, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line
@@ -328,7 +328,7 @@ def test_a_wide_dribbler_takes_the_way_with_the_most_room_not_the_first_free_one
 
 
 def test_on_our_ball_forwards_wait_on_their_last_line():
-    players = [opp(1, 50.0, 0.0, goalie=True), opp(2, 25.0, 5.0), opp(3, 22.0, -5.0), mate(7, 0.5, 0.0)]
+    players = [opp(1, 50.0, 0.0, goalie=True), opp(2, 25.0, 5.0), opp(3, 22.0, 10.0), mate(7, 0.5, 0.0)]
     d = decide(state((0.0, -16.0), ball=(0.0, 0.0), players=players, number=11), 11, 11, {7: 0})
     assert d.method == "moveTo" and d.action.target.x == 24.0 and "last line" in d.why  # the second-last: 25
 
@@ -364,3 +364,31 @@ def test_in_their_half_a_ball_into_space_a_team_mate_reaches_first_comes_before_
     assert d.action.target.y < -12.0  # out wide, past the man, where the forward gets it first
     d = decide(state((5.0, -5.0), ball=(5.5, -5.0), players=players, number=9), 9, 11, {})
     assert d.method == "dribble"  # nobody of ours to reach it: carry it as before
+
+
+def test_while_a_team_mate_has_the_ball_a_midfielder_stands_where_a_pass_reaches_him_first():
+    ball, spot = (0.0, 0.0), home_position(6, ball_x=0.0, ball_y=0.0)  # (-15 + 0, 14)
+    carrier = mate(10, 0.5, 0.0)
+    # An opponent near the lane to the formation spot: a pass there is cut out.
+    lane = opp(7, -7.5, 4.0)
+    players = [carrier, lane, opp(1, 50.0, 0.0, goalie=True), opp(2, 20.0, 0.0)]
+    d = decide(state(spot, ball=ball, players=players, number=6), 6, 11, {10: 0})
+    assert d.method == "moveTo" and "open for a pass" in d.why
+    target = (d.action.target.x, d.action.target.y)
+    assert target == (spot[0] + 4.0, spot[1])  # of the safe spots, the furthest up, then the nearest
+    path = kicked_path(ball, target, pass_speed(dist_of(ball, target)))
+    mine = first_cycles(path, [(target, False)])
+    assert (
+        mine is not None and (first_cycles(path, [((lane.positioning.x, lane.positioning.y), False)]) or 99) >= mine + 2
+    )
+    # The same, but the lane is clear: the furthest-up safe spot, never offside.
+    players = [carrier, opp(1, 50.0, 0.0, goalie=True), opp(2, 9.0, 20.0), opp(3, 10.0, -20.0)]
+    d = decide(state(spot, ball=ball, players=players, number=6), 6, 11, {10: 0})
+    assert d.method == "moveTo" and d.action.target.x == spot[0] + 4.0
+    # A loose ball or theirs: the formation spot, as before.
+    d = decide(state(spot, ball=(0.0, 0.0), players=[lane, opp(2, 0.5, 0.0)], number=6), 6, 11, {10: 9})
+    assert "open for a pass" not in d.why
+
+
+def dist_of(a, b):
+    return math.hypot(a[0] - b[0], a[1] - b[1])
