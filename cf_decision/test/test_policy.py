@@ -385,6 +385,9 @@ def test_while_a_team_mate_has_the_ball_a_midfielder_stands_where_a_pass_reaches
     players = [carrier, opp(1, 50.0, 0.0, goalie=True), opp(2, 9.0, 20.0), opp(3, 10.0, -20.0)]
     d = decide(state(spot, ball=ball, players=players, number=6), 6, 11, {10: 0})
     assert d.method == "moveTo" and d.action.target.x == spot[0] + 4.0
+    # At our set piece the receivers stand still, as the taker's pass model has them.
+    d = decide(state(spot, ball=ball, players=players, mode=PlayMode.FREE_KICK_OUR, number=6), 6, 11, {10: 0})
+    assert "open for a pass" not in d.why
     # A loose ball or theirs: the formation spot, as before.
     d = decide(state(spot, ball=(0.0, 0.0), players=[lane, opp(2, 0.5, 0.0)], number=6), 6, 11, {10: 9})
     assert "open for a pass" not in d.why
