@@ -369,6 +369,7 @@ class Dribble(Skill):
     def __init__(self, x: float, y: float, speed: float):
         super().__init__()
         self.x, self.y, self.speed = x, y, speed
+        self.heading: float | None = None  # degrees: the way the last touch sent the ball
 
     def _step(self, world: World, me: SimPlayer) -> Step:
         b = world.ball
@@ -377,11 +378,75 @@ class Dribble(Skill):
         if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
             push = dribble_push(world, self.speed)
             follow = _go(world, me, b.x + b.vx, b.y + b.vy, 100.0)
-            if follow[0] == "dash" and _rolling_towards(b, self.x, self.y, 0.6 * push):
+            heading = self.heading if self.heading is not None else direction_deg(b.x, b.y, self.x, self.y)
+            if follow[0] == "dash" and _rolling_along(b, heading, 0.6 * push):
                 # Pushed already and facing it: run after it (kicking again would cost that cycle).
                 return Step([follow])
-            return Step([kick_towards(world, me, self.x, self.y, push)])
+            self.heading = dribble_way(world, me, self.x, self.y, push)
+            way = math.radians(self.heading)
+            return Step([kick_towards(world, me, b.x + 10.0 * math.cos(way), b.y + 10.0 * math.sin(way), push)])
         return _tackle_for(world, me, self.x, self.y) or _chase_ball(world, me)
+
+
+DODGE_ANGLES = (0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0)  # degrees off the way a dribble's touch may go
+DODGE_LOOK = 10  # cycles of the pushed ball's roll looked at
+OPPONENT_REACH = 1.2  # m: an opponent has the ball within this (a base team's widest kickable area)
+
+
+def dribble_way(world: World, me: SimPlayer, x: float, y: float, push: float) -> float:
+    """The direction (degrees) of a dribble's touch: towards (x, y) or the nearest way off it, up to
+    60 degrees, on which I have the ball again before any opponent can; of none, the one I am
+    soonest at relative to them.
+
+    A dribble is a pass to oneself: pushed straight at a defender, the ball rolled out of the
+    dribbler's reach into the defender's, and against real teams that lost nearly every dribble
+    (docs/decision.md).
+    """
+    b, prm = world.ball, world.params
+    straight = direction_deg(b.x, b.y, x, y)
+    opponents = [p for p in world.players.values() if p.side is not me.side]
+    best, best_margin = straight, None
+    for off in DODGE_ANGLES:
+        heading = straight + off
+        way = math.radians(heading)
+        path, (bx, by), (vx, vy) = [], (b.x, b.y), (push * math.cos(way), push * math.sin(way))
+        for _ in range(DODGE_LOOK):
+            bx, by, vx, vy = bx + vx, by + vy, vx * prm.ball_decay, vy * prm.ball_decay
+            path.append((bx, by))
+        if any(abs(px) > prm.field_length / 2 or abs(py) > prm.field_width / 2 for px, py in path):
+            continue
+        mine = _my_cycles(world, me, path)
+        theirs = min((_their_cycles(o, path) for o in opponents), default=DODGE_LOOK + 1)
+        if mine < theirs:
+            return heading
+        if best_margin is None or theirs - mine > best_margin:
+            best, best_margin = heading, theirs - mine
+    return best
+
+
+def _my_cycles(world: World, me: SimPlayer, path: list[tuple[float, float]]) -> int:
+    """The first cycle after this touch in which I can have the ball on ``path`` again (DODGE_LOOK + 1: none).
+
+    This cycle goes to the touch; then I run after it, gathering speed as rcssserver's dash does.
+    """
+    prm = world.params
+    x, y = me.x + me.vx, me.y + me.vy
+    speed, covered = math.hypot(me.vx, me.vy) * prm.player_decay, 0.0
+    for n, (bx, by) in enumerate(path, start=1):
+        if distance(x, y, bx, by) - prm.kickable_distance <= covered:
+            return n
+        speed = min(prm.player_speed_max, speed + 100.0 * prm.dash_power_rate)
+        covered += speed
+        speed *= prm.player_decay
+    return DODGE_LOOK + 1
+
+
+def _their_cycles(p: SimPlayer, path: list[tuple[float, float]]) -> int:
+    """The first cycle in which opponent ``p``, running at full pace from now, can have the ball on ``path``."""
+    for n, (bx, by) in enumerate(path, start=1):
+        if distance(p.x, p.y, bx, by) - OPPONENT_REACH <= n * 1.0:
+            return n
+    return DODGE_LOOK + 2
 
 
 def dribble_push(world: World, speed: float) -> float:
@@ -394,12 +459,11 @@ def dribble_push(world: World, speed: float) -> float:
     return share * world.params.ball_accel_max
 
 
-def _rolling_towards(ball, x: float, y: float, speed: float) -> bool:
-    """The ball rolls at least ``speed`` within 20 degrees of the way to (x, y)."""
+def _rolling_along(ball, heading: float, speed: float) -> bool:
+    """The ball rolls at least ``speed`` within 20 degrees of ``heading``."""
     if math.hypot(ball.vx, ball.vy) < speed:
         return False
-    off = norm_deg(math.degrees(math.atan2(ball.vy, ball.vx)) - direction_deg(ball.x, ball.y, x, y))
-    return abs(off) <= 20.0
+    return abs(norm_deg(math.degrees(math.atan2(ball.vy, ball.vx)) - heading)) <= 20.0
 
 
 def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> Skill:
