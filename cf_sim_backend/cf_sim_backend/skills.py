@@ -379,15 +379,22 @@ class Dribble(Skill):
             push = dribble_push(world, self.speed)
             follow = _go(world, me, b.x + b.vx, b.y + b.vy, 100.0)
             heading = self.heading if self.heading is not None else direction_deg(b.x, b.y, self.x, self.y)
-            if follow[0] == "dash" and _rolling_along(b, heading, 0.6 * push):
-                # Pushed already and facing it: run after it (kicking again would cost that cycle).
+            if _rolling_along(b, heading, 0.6 * push):
+                # Pushed already: run (or turn) after it. Kicking again cost a cycle, and on
+                # rcssserver the ball was 3 m ahead of a dribbler who had touched it twice, then turned.
                 return Step([follow])
             self.heading = dribble_way(world, me, self.x, self.y, push)
+            off = norm_deg(self.heading - me.body)
+            if abs(off) > DRIBBLE_FACING and math.hypot(b.vx, b.vy) < STILL and not pressed(world, me):
+                # Face the way first: pushed across the body, the ball runs off while he turns.
+                return Step([("turn", _turn_moment(world, me, off))])
             way = math.radians(self.heading)
             return Step([kick_towards(world, me, b.x + 10.0 * math.cos(way), b.y + 10.0 * math.sin(way), push)])
         return _tackle_for(world, me, self.x, self.y) or _chase_ball(world, me)
 
 
+DRIBBLE_FACING = 30.0  # degrees: a dribbler whose body is further off the way turns before he pushes,
+STILL = 0.4  # m/cycle: if the ball is slower than this (it stays in reach meanwhile)
 DODGE_ANGLES = (0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0)  # degrees off the way a dribble's touch may go
 DODGE_LOOK = 10  # cycles of the pushed ball's roll looked at
 OPPONENT_REACH = 1.2  # m: an opponent has the ball within this (a base team's widest kickable area)

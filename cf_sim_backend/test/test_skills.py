@@ -291,17 +291,20 @@ def test_a_dribble_takes_the_ball_round_a_man_in_its_way_not_into_him():
     sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 0.0), (Side.RIGHT, 4, 5.0, 0.0, 180.0))
     sim.world.ball.x = 0.6
     skill, me = skill_of(sim, Side.LEFT, 10, exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10))
-    him, closest, first = sim.world.player(Side.RIGHT, 4), 99.0, None
+    him, closest, pushed, kinds = sim.world.player(Side.RIGHT, 4), 99.0, None, []
     for _ in range(40):
         step = skill.step(sim.world, me)
         for cmd in step.commands:
-            first = first or (cmd if cmd[0] == "kick" else None)
+            kinds.append(cmd[0])
             sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
         sim.step()
+        if pushed is None and "kick" in kinds:
+            pushed = math.degrees(math.atan2(sim.world.ball.vy, sim.world.ball.vx))
         closest = min(closest, distance(him.x, him.y, sim.world.ball.x, sim.world.ball.y))
         if step.status != "running":
             break
-    # The first touch goes off the straight way; the ball never comes within his reach; it gets there.
-    assert first is not None and abs(first[2]) >= 15.0
+    # The first push goes off the straight way (after a turn to face it: never across the body),
+    # the ball never comes within his reach, and it gets there.
+    assert kinds[0] == "turn" and pushed is not None and abs(pushed) >= 15.0
     assert closest > 1.2
     assert step.status == "done" and distance(sim.world.ball.x, sim.world.ball.y, 15.0, 0.0) <= 1.6
