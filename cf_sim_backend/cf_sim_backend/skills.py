@@ -378,8 +378,7 @@ class Dribble(Skill):
         if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
             push = dribble_push(world, self.speed)
             follow = _go(world, me, b.x + b.vx, b.y + b.vy, 100.0)
-            heading = self.heading if self.heading is not None else direction_deg(b.x, b.y, self.x, self.y)
-            if _rolling_along(b, heading, 0.6 * push):
+            if self._pushed(world, me, push):
                 # Pushed already: run (or turn) after it. Kicking again cost a cycle, and on
                 # rcssserver the ball was 3 m ahead of a dribbler who had touched it twice, then turned.
                 return Step([follow])
@@ -391,6 +390,22 @@ class Dribble(Skill):
             way = math.radians(self.heading)
             return Step([kick_towards(world, me, b.x + 10.0 * math.cos(way), b.y + 10.0 * math.sin(way), push)])
         return _tackle_for(world, me, self.x, self.y) or _chase_ball(world, me)
+
+    def _pushed(self, world: World, me: SimPlayer, push: float) -> bool:
+        """The ball rolls on the way my last touch sent it; or, before my first, on a way a touch of
+        this dribble could take, and I have it again before any opponent.
+
+        A new target every cycle or two (the way with the most room changes as men move) started a
+        new dribble that touched the rolling ball again, and again.
+        """
+        b = world.ball
+        if self.heading is not None:
+            return _rolling_along(b, self.heading, 0.6 * push)
+        straight = direction_deg(b.x, b.y, self.x, self.y)
+        if not _rolling_along(b, straight, 0.6 * push, max(DODGE_ANGLES)):
+            return False
+        margin = _dribble_margin(world, me, (b.vx, b.vy))
+        return margin is not None and margin > 0
 
 
 DRIBBLE_FACING = 30.0  # degrees: a dribbler whose body is further off the way turns before he pushes,
@@ -409,26 +424,33 @@ def dribble_way(world: World, me: SimPlayer, x: float, y: float, push: float) ->
     dribbler's reach into the defender's, and against real teams that lost nearly every dribble
     (docs/decision.md).
     """
-    b, prm = world.ball, world.params
+    b = world.ball
     straight = direction_deg(b.x, b.y, x, y)
-    opponents = [p for p in world.players.values() if p.side is not me.side]
     best, best_margin = straight, None
     for off in DODGE_ANGLES:
-        heading = straight + off
-        way = math.radians(heading)
-        path, (bx, by), (vx, vy) = [], (b.x, b.y), (push * math.cos(way), push * math.sin(way))
-        for _ in range(DODGE_LOOK):
-            bx, by, vx, vy = bx + vx, by + vy, vx * prm.ball_decay, vy * prm.ball_decay
-            path.append((bx, by))
-        if any(abs(px) > prm.field_length / 2 or abs(py) > prm.field_width / 2 for px, py in path):
-            continue
-        mine = _my_cycles(world, me, path)
-        theirs = min((_their_cycles(o, path) for o in opponents), default=DODGE_LOOK + 1)
-        if mine < theirs:
-            return heading
-        if best_margin is None or theirs - mine > best_margin:
-            best, best_margin = heading, theirs - mine
+        way = math.radians(straight + off)
+        margin = _dribble_margin(world, me, (push * math.cos(way), push * math.sin(way)))
+        if margin is not None and margin > 0:
+            return straight + off
+        if margin is not None and (best_margin is None or margin > best_margin):
+            best, best_margin = straight + off, margin
     return best
+
+
+def _dribble_margin(world: World, me: SimPlayer, velocity: tuple[float, float]) -> int | None:
+    """How many cycles before any opponent I have the ball again, rolling from where it is at
+    ``velocity`` (after this cycle's touch); None: it leaves the field within DODGE_LOOK cycles.
+    """
+    b, prm = world.ball, world.params
+    path, (bx, by), (vx, vy) = [], (b.x, b.y), velocity
+    for _ in range(DODGE_LOOK):
+        bx, by, vx, vy = bx + vx, by + vy, vx * prm.ball_decay, vy * prm.ball_decay
+        path.append((bx, by))
+    if any(abs(px) > prm.field_length / 2 or abs(py) > prm.field_width / 2 for px, py in path):
+        return None
+    opponents = [p for p in world.players.values() if p.side is not me.side]
+    theirs = min((_their_cycles(o, path) for o in opponents), default=DODGE_LOOK + 2)
+    return theirs - _my_cycles(world, me, path)
 
 
 def _my_cycles(world: World, me: SimPlayer, path: list[tuple[float, float]]) -> int:
@@ -466,11 +488,11 @@ def dribble_push(world: World, speed: float) -> float:
     return share * world.params.ball_accel_max
 
 
-def _rolling_along(ball, heading: float, speed: float) -> bool:
-    """The ball rolls at least ``speed`` within 20 degrees of ``heading``."""
+def _rolling_along(ball, heading: float, speed: float, within: float = 20.0) -> bool:
+    """The ball rolls at least ``speed`` within ``within`` degrees of ``heading``."""
     if math.hypot(ball.vx, ball.vy) < speed:
         return False
-    return abs(norm_deg(math.degrees(math.atan2(ball.vy, ball.vx)) - heading)) <= 20.0
+    return abs(norm_deg(math.degrees(math.atan2(ball.vy, ball.vx)) - heading)) <= within
 
 
 def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> Skill:

@@ -308,3 +308,17 @@ def test_a_dribble_takes_the_ball_round_a_man_in_its_way_not_into_him():
     assert kinds[0] == "turn" and pushed is not None and abs(pushed) >= 15.0
     assert closest > 1.2
     assert step.status == "done" and distance(sim.world.ball.x, sim.world.ball.y, 15.0, 0.0) <= 1.6
+
+
+def test_a_new_dribble_lets_a_ball_rolling_its_way_run_unless_a_man_would_get_it_first():
+    def first_command(*others):
+        sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 30.0), *others)
+        ball = sim.world.ball
+        ball.x, ball.y, ball.vx, ball.vy = 0.5, 0.3, 0.8, 0.45  # pushed 30 degrees up by the last dribble
+        skill, me = skill_of(sim, Side.LEFT, 10, exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10))
+        return skill.step(sim.world, me).commands[0][0]
+
+    # The new target (straight along x) is 30 degrees off the roll: the roll is kept, he runs after it.
+    assert first_command() == "dash"
+    # A man on that roll would have it first: the ball is touched onto another way.
+    assert first_command((Side.RIGHT, 4, 4.0, 2.5, 180.0)) == "kick"
