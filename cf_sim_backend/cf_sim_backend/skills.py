@@ -229,10 +229,11 @@ INTERCEPT_HORIZON = 50  # cycles of the ball's path looked along for a meeting p
 INTERCEPT_REACH = 0.8  # share of the kickable distance planned with (noise, and a touch at the edge is weak)
 
 
-def run_distances(world: World, me: SimPlayer, dashes: int) -> list[float]:
-    """How far 0, 1, ... ``dashes`` full dashes carry the player from his present speed (rcssserver's dash model)."""
+def run_distances(world: World, me: SimPlayer, dashes: int, speed: float | None = None) -> list[float]:
+    """How far 0, 1, ... ``dashes`` full dashes carry the player from his present speed, or from
+    ``speed`` (rcssserver's dash model)."""
     prm = world.params
-    v, covered, out = math.hypot(me.vx, me.vy), 0.0, [0.0]
+    v, covered, out = math.hypot(me.vx, me.vy) if speed is None else speed, 0.0, [0.0]
     for _ in range(dashes):
         v = min(prm.player_speed_max, v + 100.0 * prm.dash_power_rate)
         covered += v
@@ -458,15 +459,11 @@ def _my_cycles(world: World, me: SimPlayer, path: list[tuple[float, float]]) -> 
 
     This cycle goes to the touch; then I run after it, gathering speed as rcssserver's dash does.
     """
-    prm = world.params
     x, y = me.x + me.vx, me.y + me.vy
-    speed, covered = math.hypot(me.vx, me.vy) * prm.player_decay, 0.0
+    runs = run_distances(world, me, DODGE_LOOK, math.hypot(me.vx, me.vy) * world.params.player_decay)
     for n, (bx, by) in enumerate(path, start=1):
-        if distance(x, y, bx, by) - prm.kickable_distance <= covered:
+        if distance(x, y, bx, by) - world.params.kickable_distance <= runs[n - 1]:
             return n
-        speed = min(prm.player_speed_max, speed + 100.0 * prm.dash_power_rate)
-        covered += speed
-        speed *= prm.player_decay
     return DODGE_LOOK + 1
 
 
