@@ -21,7 +21,7 @@ from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse, well_formed
 from cf_sim_backend.rcss.session import PlayerSession, rcss_command
 from cf_sim_backend.rcss.trace import belief_errors, read_trace
 from cf_sim_backend.skills import Intercept, KickTo, MoveTo, Skill, skill_for
-from cf_sim_backend.world import Side
+from cf_sim_backend.world import Side, norm_deg
 
 DATA = Path(__file__).parent / "data" / "rcss"
 TRACES = ["player-trainer-150cycles.log", "player-trainer-opponents-1000cycles-synch.log.gz"]
@@ -678,3 +678,42 @@ def test_with_the_ball_at_its_feet_the_head_looks_round_the_player_a_cone_width_
         commands = [c for c in session.act().commands if c.startswith("(turn_neck")]
         b.me.neck += float(commands[0][len("(turn_neck ") : -1]) if commands else 0.0
         assert abs(abs(45.0 - b.me.head) - 15.0) < 1.0  # 15 degrees off the ball, inside the narrow cone
+
+
+def look(session: PlayerSession) -> None:
+    """One cycle's act, with its turn and turn_neck carried out (a still player turns by the whole moment)."""
+    for command in session.act().commands:
+        name, _, value = command.strip("()").partition(" ")
+        if name == "turn":
+            session.belief.me.body = norm_deg(session.belief.me.body + float(value))
+        elif name == "turn_neck":
+            session.belief.me.neck += float(value)
+
+
+def test_going_for_a_rolling_ball_every_other_see_looks_upfield_until_it_is_close():
+    session = placed_session()
+    b = session.belief
+    b.me.view_width = session.view = "narrow"
+    b.me.body = 90.0  # facing the ball: the skill dashes, the body stays
+    b.ball = Track(0.0, 12.0, 0.0, -1.5, 0.1, 40)  # 12 m off, rolling at us at 1.5 m/cycle: 8 cycles
+    session.start(Intercept(52.5, 0.0))
+    heads, seen = [], 41  # the see at 41 showed it
+    for t in (41, 42, 43):
+        b.time = b.see_time = t
+        b.ball.seen = seen
+        look(session)
+        heads.append(round(b.me.head))
+        seen = t + 1 if abs(norm_deg(90.0 - b.me.head)) <= 30.0 else seen  # the next see shows it if in the cone
+    assert heads[0] == 0  # towards their goal, away from the ball at 90
+    assert abs(heads[1] - 90) <= 15 and heads[2] == 0  # back to the ball, then upfield again
+    b.ball = Track(0.0, 3.0, 0.0, -1.5, 0.1, 43)  # two cycles off: the head stays on the ball
+    b.time = b.see_time = 44
+    b.ball.seen = 44
+    look(session)
+    assert abs(b.me.head - 90.0) <= 15.0
+    session.start(None)  # not going for it: the usual look, near the ball
+    b.ball = Track(0.0, 12.0, 0.0, -1.5, 0.1, 44)
+    b.time = b.see_time = 45
+    b.ball.seen = 45
+    look(session)
+    assert abs(b.me.head - 90.0) <= 15.0

@@ -14,10 +14,11 @@ import re
 from dataclasses import dataclass, field
 
 from cf_lang.errors import LanguageError
+from cf_lang.ontology import FIELD
 from cf_sim_backend.rcss.belief import HALF_VIEW, Belief
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse
 from cf_sim_backend.skills import Command, Skill
-from cf_sim_backend.world import norm_deg
+from cf_sim_backend.world import Side, norm_deg
 
 _EXECUTED = ("kick", "dash", "turn", "move", "catch", "tackle")  # sense_body counters of body commands
 _BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "kick", "catch", "tackle"})
@@ -27,6 +28,8 @@ NARROW_WITHIN = 10.0  # m: a ball this close is watched every cycle (narrow view
 NORMAL_BEYOND = 13.0  # m: and back to normal width past this (a gap, so a ball about 10 m off does not flip it)
 AROUND_WITHIN = 2.0  # m: a ball this close is seen all round (visible_distance 3 m): the head looks round the player
 NECK_LIMIT = 90.0  # rcssserver's maxneckang (and -minneckang)
+RECEIVE_SPEED = 0.8  # m/cycle: a ball rolling at least this fast goes where the belief says, unless touched
+RECEIVE_AHEAD = 3  # cycles: while a ball we go for is further off than this, every other see looks upfield
 _SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
 
 
@@ -187,6 +190,12 @@ class PlayerSession:
             # and right in turn, a cone's width apart. With the head on the ball, a narrow cone hid
             # the opponents closing in from the side, and the player on the ball ran into them.
             target = (self._scan_turn % 3 - 1) * 2.0 * half
+        elif self._receiving():
+            # Look where the ball will be played next while it rolls on its way: against HELIOS base
+            # most passes went to an opponent the passer had not seen within 3 m of where he stood
+            # (docs/performance.md, session 21). Every other see, as the ball was seen at the last.
+            goal_x = -FIELD.length / 2 if b.side is Side.RIGHT else FIELD.length / 2
+            target = norm_deg(math.degrees(math.atan2(-me.y, goal_x - me.x)) - body)
         elif b.ball is not None:
             to_ball = math.degrees(math.atan2(b.ball.y - me.y, b.ball.x - me.x))
             offset = min(SCAN_OFFSET, half - SCAN_MARGIN)
@@ -199,6 +208,14 @@ class PlayerSession:
             return []
         self._necked = b.time
         return [f"(turn_neck {_n(turn)})"]
+
+    def _receiving(self) -> bool:
+        """Whether we go for a rolling ball, seen at the last see, still RECEIVE_AHEAD cycles or more away."""
+        b, me = self.belief, self.belief.me
+        if self.skill is None or self.skill.name != "intercept" or b.ball is None or b.ball.seen != b.see_time:
+            return False
+        speed = math.hypot(b.ball.vx, b.ball.vy)
+        return speed >= RECEIVE_SPEED and math.hypot(b.ball.x - me.x, b.ball.y - me.y) >= RECEIVE_AHEAD * speed
 
     @property
     def ready(self) -> bool:
