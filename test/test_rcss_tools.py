@@ -8,6 +8,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from rcss_ball_use import ball_use, reason, table, territory, territory_table
+from rcss_picture import picture
+from rcss_picture import table as picture_table
 from rcss_series import again, match_stats, read_rcg
 from rcss_set_pieces import kind_of, set_pieces
 from rcss_set_pieces import table as set_piece_table
@@ -168,3 +170,18 @@ def test_each_set_piece_of_ours_is_measured_by_its_kick_and_what_came_of_it(tmp_
         assert "| kick_off | 1 | 2.10 | 1.00 | 18 | 20.0 | 1 |" in text
     assert kind_of("kick_in_l", "l") == "kick_in" and kind_of("kick_in_r", "l") is None
     assert kind_of("free_kick_fault_l", "l") is None  # a fault is the other side's free kick, not ours
+
+
+def test_the_opponents_a_decision_believed_are_set_against_the_game_logs_truth(tmp_path):
+    match = write_match(tmp_path)  # PYRUS 3 stands at x = 35 (our frame: CF plays left to right)
+    (match / "logs-CF" / "CF_9_rcss_player.log").write_text(
+        "[INFO] [1.0] [CF_9_decision]: t=2 pass: forward pass to team-mate 10 @ target 30.0 0.0 ball 2.0 0.0 "
+        "opp 34.0 0.5 1.0\n"  # believed 1.1 m from where he stands: known
+        "[INFO] [1.0] [CF_9_decision]: t=3 pass: forward pass to team-mate 10 @ target 30.0 0.0 ball 3.0 0.0 "
+        "opp 20.0 0.0 4.0\n"  # 15 m off: not known
+        "[INFO] [1.0] [CF_9_decision]: t=4 pass: safe pass to team-mate 10 @ target 30.0 0.0 ball 4.0 0.0 opp \n"
+    )
+    rows = picture(match, "CF", near=40.0, within=3.0)
+    assert rows == {"forward pass to team-mate": [2, 2, 1], "safe pass to team-mate": [1, 1, 1]}
+    assert picture(match, "CF", near=25.0)["forward pass to team-mate"] == [2, 0, 0]  # 31-33 m off the ball
+    assert "| forward pass to team-mate | 2 | 2 | 1 | 50% |" in picture_table(rows, 40.0, 3.0)
