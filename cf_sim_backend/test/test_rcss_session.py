@@ -717,3 +717,8 @@ def test_going_for_a_rolling_ball_every_other_see_looks_upfield_until_it_is_clos
     b.ball.seen = 45
     look(session)
     assert abs(b.me.head - 90.0) <= 15.0
+    session.goalie = True  # the goalkeeper going for a ball (a shot, maybe) keeps his eyes on it
+    session.start(Intercept(52.5, 0.0))
+    b.time = b.see_time = b.ball.seen = 46
+    look(session)
+    assert abs(b.me.head - 90.0) <= 15.0

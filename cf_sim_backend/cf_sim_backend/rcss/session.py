@@ -210,9 +210,14 @@ class PlayerSession:
         return [f"(turn_neck {_n(turn)})"]
 
     def _receiving(self) -> bool:
-        """Whether we go for a rolling ball, seen at the last see, still RECEIVE_AHEAD cycles or more away."""
+        """Whether we go for a rolling ball, seen at the last see, still RECEIVE_AHEAD cycles or more away.
+
+        Never the goalkeeper: the ball he goes for may be a shot, and he catches only what he sees.
+        """
         b, me = self.belief, self.belief.me
-        if self.skill is None or self.skill.name != "intercept" or b.ball is None or b.ball.seen != b.see_time:
+        if self.goalie or self.skill is None or self.skill.name != "intercept":
+            return False
+        if b.ball is None or b.ball.seen != b.see_time:
             return False
         speed = math.hypot(b.ball.vx, b.ball.vy)
         return speed >= RECEIVE_SPEED and math.hypot(b.ball.x - me.x, b.ball.y - me.y) >= RECEIVE_AHEAD * speed
