@@ -99,7 +99,7 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
     contested = opponent_on_ball(state, ball)
     if may_touch and choose_interceptor(number, my_eta, claims):
         if contested:
-            return win_the_ball(ball, f"fastest to a contested ball ({my_eta} cycles)")
+            return win_the_ball(state, ball, f"fastest to a contested ball ({my_eta} cycles)")
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
     if mode is PlayMode.KICK_OFF_OUR:
         # The taker may look before he kicks: a wide forward drifting in meanwhile closes the space
@@ -108,7 +108,7 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
     if may_touch and contested and dist(me_pos, ball) <= TACKLE_REACH:
         # Whoever is this close to an opponent's ball has a tackle: the skill takes it when it is
         # near-sure (else closes in). Markers and holders used to let such balls go by.
-        return win_the_ball(ball, "an opponent's ball within tackling reach")
+        return win_the_ball(state, ball, "an opponent's ball within tackling reach")
     if may_touch and ball[0] < 0.0 and contested and second_fastest(number, my_eta, claims):
         return block(me_pos, ball, f"cover the opponent on the ball ({my_eta} cycles)", tired(state))
     if role in (Role.DEFENDER, Role.MIDFIELDER) and ball[0] < MARK_BALL_X and their_ball(state, ball):

@@ -18,6 +18,7 @@ SHOOT_RANGE = 22.0  # at a set piece, shoot from within this distance
 SHOT_RANGE = 30.0  # in play, consider shots from within this distance
 LONG_SHOT_RANGE = 25.0  # in play, with nothing better, shoot anyway from within this distance
 SHOT_SPEED = 2.4  # m/cycle a shot is assumed to leave the foot with
+WIN_PASS_GAIN = 5.0  # m: a ball won in our half is passed on only this far up the field or further
 SAFE_MARGIN = 2  # cycles: our receiver must be this much sooner at the ball than any opponent
 OPEN_NEAR = 5.0  # m: no opponent this close, and
 OPEN_AHEAD = 15.0  # m: none this far along the way: a dribble may go at full speed
@@ -31,14 +32,19 @@ LOOK_RADIUS = 30.0  # m: if he was this close to the ball and
 LOOK_BEHIND = 5.0  # m: at most this much nearer our goal than the ball
 
 
-def win_the_ball(ball: tuple[float, float], why: str) -> Decision:
+def win_the_ball(state: WorldState, ball: tuple[float, float], why: str) -> Decision:
     """Go for a ball an opponent has and play it the moment it is in reach, in one request.
 
     Intercepting first and deciding then would give the opponent the cycles our decision and
     action need to see the ball at our feet: the action's kick skills approach the ball
-    themselves. In our half: clear it long towards the wing; in theirs: take it towards the goal.
+    themselves. In our half: pass it to a team-mate who gets it safely (the pass goes to where he
+    is when it is kicked), else clear it long towards the wing; in theirs: take it towards the goal.
     """
     if ball[0] < 0.0:
+        choice = best_pass(state, ball, WIN_PASS_GAIN)
+        if choice is not None:
+            to = Player(player_number=choice.number, which_team=Team.OUR)
+            return Decision("pass", act.Pass(to=to), f"{why}: win it and pass it to team-mate {choice.number}")
         x = min(30.0, round((ball[0] + 35.0) / 10.0) * 10.0)  # on a 10 m grid: one request, not one a cycle
         target = point(x, 25.0 if ball[1] >= 0 else -25.0)
         return Decision("pass", act.Pass(target=target, power=100.0), why + ": win it and clear it")
