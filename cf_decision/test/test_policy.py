@@ -302,6 +302,26 @@ def test_any_player_within_tackling_reach_of_an_opponents_ball_goes_for_it():
     assert "tackling reach" not in decide(loose, 3, 11, {7: 1, 4: 2, 3: 5}).why
 
 
+def test_a_ball_won_in_our_half_goes_to_a_team_mate_who_gets_it_safely_else_is_cleared():
+    holder = opp(9, -30.0, 5.0)
+    free = [holder, mate(8, -15.0, 20.0), opp(10, -35.0, -6.0)]
+    d = decide(state((-32.0, 4.0), ball=(-30.8, 5.0), players=free, number=4), 4, 11, {4: 1, 7: 5})
+    assert d.method == "pass" and "win it and pass it" in d.why
+    assert d.action.to.player_number == 8 and d.action.target is None  # to him, where he is when it is kicked
+    marked = [holder, mate(8, -15.0, 20.0), opp(10, -16.0, 18.0), opp(11, -22.0, 12.0)]
+    d = decide(state((-32.0, 4.0), ball=(-30.8, 5.0), players=marked, number=4), 4, 11, {4: 1, 7: 5})
+    assert d.method == "pass" and "win it and clear it" in d.why and abs(d.action.target.y) == 25.0
+
+
+def test_in_their_half_a_safe_pass_that_loses_no_ground_comes_before_a_dribble():
+    players = [mate(8, 16.0, 10.0), opp(4, 22.0, 0.0), opp(5, 25.0, 12.0)]
+    d = decide(state((10.0, 0.0), ball=(10.5, 0.0), players=players), 7, 11, {})
+    assert d.method == "pass" and d.why == "safe pass on to team-mate 8"
+    behind = [mate(8, 2.0, 5.0), opp(4, 22.0, 0.0), opp(5, 25.0, 12.0)]
+    d = decide(state((10.0, 0.0), ball=(10.5, 0.0), players=behind), 7, 11, {})
+    assert d.method == "dribble" and "space" in d.why  # a pass back is no better than carrying it on
+
+
 def test_a_tired_player_walks_to_its_spot():
     st = state((-5.0, 20.0), ball=(30.0, 0.0), number=4)
     fresh = decide(st, 4, 11, {9: 1})
