@@ -10,6 +10,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 from rcss_ball_use import ball_use, reason, table, territory, territory_table
 from rcss_picture import picture
 from rcss_picture import table as picture_table
+from rcss_reach_fit import kicks as reach_kicks
+from rcss_reach_fit import lead
+from rcss_reach_fit import table as reach_table
 from rcss_series import again, match_stats, read_rcg
 from rcss_set_pieces import kind_of, set_pieces
 from rcss_set_pieces import table as set_piece_table
@@ -185,3 +188,32 @@ def test_the_opponents_a_decision_believed_are_set_against_the_game_logs_truth(t
     assert rows == {"forward pass to team-mate": [2, 2, 1], "safe pass to team-mate": [1, 1, 1]}
     assert picture(match, "CF", near=25.0)["forward pass to team-mate"] == [2, 0, 0]  # 31-33 m off the ball
     assert "| forward pass to team-mate | 2 | 2 | 1 | 50% |" in picture_table(rows, 40.0, 3.0)
+
+
+def test_the_reach_model_is_replayed_on_the_game_logs_truth_of_each_kick(tmp_path):
+    """CF 9 passes 2 m/cycle to 10, 9.5 m on (kept); 10 kicks it on with nobody of ours ahead (lost)."""
+    where = {("l", 9): (10.0, 0.0), ("l", 10): (20.0, 0.0), ("r", 3): (40.0, 0.0), ("r", 1): (50.0, 0.0)}
+    kicks_of = {key: 0 for key in where}
+    touches = {2: ("l", 9), 7: ("l", 10), 12: ("r", 3)}
+    ball, velocity = 10.5, 0.0
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 16):
+        if t in touches:
+            kicks_of[touches[t]] += 1
+            velocity = 2.0 if t < 12 else 0.0
+        elif t > 2:
+            ball, velocity = ball + velocity, velocity * 0.94
+        players = " ".join(
+            f"(({side} {n}) 0 {'0x3' if n == 1 and side == 'r' else '0x1'} {x} {y} 0 0 0 0 (v h 120) (fp 0 0) "
+            f"(s 8000 1 1 130600) (c {kicks_of[(side, n)]} 0 0 0 0 0 0 0 0 0 0))"
+            for (side, n), (x, y) in where.items()
+        )
+        lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players})")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    first, second = reach_kicks(tmp_path, "CF")
+    assert first.kept and not second.kept and abs(first.velocity[0] - 2.0) < 1e-3
+    assert first.opponents[-1] == ((50.0, 0.0), True)  # the goalkeeper, by the game log's state bit
+    assert lead(first, 1) >= 4 and lead(second, 1) <= -3  # nobody of ours ahead of the second
+    assert lead(first, 3) < lead(first, 1)  # a team-mate who sets off later is there later
+    text = reach_table([first, second], [1])
+    assert "| 1 cycle | 0/1 (0%) | - | - | - | 1/1 (100%) |" in text

@@ -46,10 +46,11 @@ def kicked_path(start: Point, target: Point, speed: float) -> list[Point]:
     return ball_path(start, (speed * math.cos(angle), speed * math.sin(angle)))
 
 
-def cycles_to_path(player: Point, path: list[Point], reach: float = REACH) -> int | None:
-    """The first cycle in which ``player`` can have a ball on ``path``; None: not within the horizon."""
+def cycles_to_path(player: Point, path: list[Point], reach: float = REACH, react: int = TURN_CYCLES) -> int | None:
+    """The first cycle in which ``player``, setting off after ``react`` cycles, can have a ball on
+    ``path``; None: not within the horizon."""
     for n, (bx, by) in enumerate(path, start=1):
-        run = max(0.0, PLAYER_SPEED * (n - TURN_CYCLES) - START_LOSS)
+        run = max(0.0, PLAYER_SPEED * (n - react) - START_LOSS)
         if math.hypot(bx - player[0], by - player[1]) - reach <= run:
             return n
     return None
@@ -66,11 +67,12 @@ def cycles_to_ball(me: Point, ball: Point, velocity: Point = (0.0, 0.0)) -> int:
     return HORIZON + int(math.hypot(me[0] - stop[0], me[1] - stop[1]) / PLAYER_SPEED)
 
 
-def first_cycles(path: list[Point], players: list[tuple[Point, bool]]) -> int | None:
-    """The earliest cycle any of ``players`` ((position, goalkeeper)) has a ball on ``path``."""
+def first_cycles(path: list[Point], players: list[tuple[Point, bool]], react: int = TURN_CYCLES) -> int | None:
+    """The earliest cycle any of ``players`` ((position, goalkeeper)) has a ball on ``path``, each
+    setting off after ``react`` cycles."""
     best = None
     for pos, goalie in players:
-        n = cycles_to_path(pos, path, CATCH_REACH if goalie else REACH)
+        n = cycles_to_path(pos, path, CATCH_REACH if goalie else REACH, react)
         if n is not None and (best is None or n < best):
             best = n
     return best

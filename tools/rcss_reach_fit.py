@@ -1,0 +1,113 @@
+"""How well the reach model foresees who gets the balls we kick: the kept share by the model's lead.
+
+    python tools/rcss_reach_fit.py MATCH_DIR [MATCH_DIR ...] [--team CF] [--react 1,2,3]
+
+A MATCH_DIR is what ``tools/rcss_match.py --game-log --out DIR`` writes (``rcss_series``: its
+``match-N``). Each kick of ours in play that sends the ball off at MIN_SPEED or faster is replayed
+with the decision's reach model (``cf_decision.reach``) on the game log's truth: the ball's true
+path (its next frame gives the speed), everyone where he stood as it started to roll. The lead is
+the first opponent's cycle at the ball minus the first team-mate's (team-mates set off after REACT
+cycles, opponents after the model's TURN_CYCLES; none within the model's horizon: a lead of
+HORIZON). The outcome is the next kick by anyone but the kicker: a team-mate's keeps the ball.
+One row per REACT; a model that foresees well keeps few balls at a lead of 0 or less and nearly
+all at 2 or more. This is how docs/performance.md judges the model the passes are chosen with.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rcss_series import kick_events, read_rcg, side_of
+
+from cf_decision import reach
+
+MIN_SPEED = 1.2  # m/cycle: slower touches are a dribble's pushes, not kicks to anybody
+GOALIE = 0x2  # the game log's player state bit of a goalkeeper
+BANDS = (("lead <= -3", -99, -3), ("-2..0", -2, 0), ("1", 1, 1), ("2..3", 2, 3), (">= 4", 4, 99))
+
+
+@dataclass(frozen=True)
+class Kick:
+    ball: tuple[float, float]
+    velocity: tuple[float, float]
+    mates: tuple[tuple[float, float], ...]  # the kicker left out
+    opponents: tuple[tuple[tuple[float, float], bool], ...]  # (position, goalkeeper)
+    kept: bool
+
+
+def kicks(match: Path, team: str = "CF") -> list[Kick]:
+    """Our kicks in play of one match, each with the truth as it started to roll and its outcome."""
+    rcg = next(iter(sorted(match.glob("*.rcg"))), None)
+    if rcg is None:
+        raise FileNotFoundError(f"no game log (*.rcg) in {match}")
+    side = side_of(rcg, team)
+    frames = read_rcg(rcg, counters=True)
+    events = kick_events(frames)
+    out = []
+    for k, (i, s, number, _, _) in enumerate(events):
+        if s != side or i + 1 >= len(frames) or frames[i][1] != "play_on" or frames[i + 1][1] != "play_on":
+            continue
+        nxt = next(((s2, n2) for _, s2, n2, _, _ in events[k + 1 :] if (s2, n2) != (s, number)), None)
+        if nxt is None:
+            continue
+        ball, after = frames[i][2], frames[i + 1][2]
+        velocity = (after[0] - ball[0], after[1] - ball[1])
+        if math.hypot(*velocity) < MIN_SPEED:
+            continue
+        players = frames[i][3]
+        mates = tuple((p[2], p[3]) for p in players if p[0] == side and p[1] != number)
+        opponents = tuple(((p[2], p[3]), bool(p[6] & GOALIE)) for p in players if p[0] != side)
+        out.append(Kick(ball, velocity, mates, opponents, nxt[0] == side))
+    return out
+
+
+def lead(kick: Kick, react: int) -> int:
+    """The model's lead of our first team-mate over their first man on the kick's true path."""
+    path = reach.ball_path(kick.ball, kick.velocity)
+    ours = reach.first_cycles(path, [(pos, False) for pos in kick.mates], react)
+    theirs = reach.first_cycles(path, list(kick.opponents))
+    return (reach.HORIZON if theirs is None else theirs) - (reach.HORIZON if ours is None else ours)
+
+
+def bands(all_kicks: list[Kick], react: int) -> list[tuple[int, int]]:
+    """(kept, kicks) in each of BANDS of the lead."""
+    out = [[0, 0] for _ in BANDS]
+    for kick in all_kicks:
+        n = max(-99, min(99, lead(kick, react)))
+        row = next(j for j, (_, lo, hi) in enumerate(BANDS) if lo <= n <= hi)
+        out[row][0] += kick.kept
+        out[row][1] += 1
+    return [(kept, n) for kept, n in out]
+
+
+def table(all_kicks: list[Kick], reacts: list[int]) -> str:
+    head = "| team-mates set off after | " + " | ".join(f"lead {name}" for name, _, _ in BANDS) + " |"
+    lines = [head.replace("lead lead", "lead"), "|---|" + "---:|" * len(BANDS)]
+    for react in reacts:
+        cells = [f"{kept}/{n} ({kept / n:.0%})" if n else "-" for kept, n in bands(all_kicks, react)]
+        lines.append(f"| {react} cycle{'s' if react != 1 else ''} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("matches", nargs="+", type=Path, help="match directories (rcss_match.py --out)")
+    ap.add_argument("--team", default="CF", help="our team's name in the game log")
+    ap.add_argument("--react", default="1,2,3", help="comma-separated: cycles before a team-mate sets off")
+    args = ap.parse_args()
+    all_kicks = [kick for match in args.matches for kick in kicks(match, args.team)]
+    print(
+        f"{len(all_kicks)} kicks of {args.team} in play at {MIN_SPEED:g} m/cycle or faster, "
+        f"{sum(k.kept for k in all_kicks)} kept"
+    )
+    print(table(all_kicks, [int(v) for v in args.react.split(",")]))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
