@@ -14,14 +14,17 @@ What it does, in order:
 - with the ball: shoot when close enough with a free line, else pass to the
   best open team-mate ahead, else carry it at full speed on an open run; else,
   in our half, clear it long towards the wing; in theirs, shoot when within
-  LONG_SHOT_RANGE, else dribble into space, else any safe pass, else take it
-  on towards the goal;
+  LONG_SHOT_RANGE, else a safe pass that loses no ground, else kick it into
+  space a team-mate reaches first, else dribble into space, else any safe
+  pass, else take it on towards the goal;
 - at our set piece the player with the ball first looks for the opponents near
   it he has not seen lately; then he passes (backwards if need be) or
   kicks long, never dribbles, and then leaves the ball to others until
   somebody else has touched it (the rules forbid the taker a second touch);
 - the team-mate chosen to go for the ball (fastest to it; ties to the lower
-  number) intercepts; in our half, when an opponent has the ball, the second
+  number) intercepts; when an opponent has the ball, he goes for it and plays
+  it in one request: in our half to a team-mate up the field who gets it
+  safely, else clear; in theirs towards the goal; in our half the second
   fastest stands in his way to our goal, facing the ball; any player within
   tackling reach of an opponent's ball goes for it; the others hold their
   formation position, shifted with the ball, facing the ball; while a team-mate
