@@ -194,7 +194,7 @@ def play(args: argparse.Namespace, n: int) -> dict:
     argv = [sys.executable, str(HERE / "rcss_match.py"), "--server", args.server, "--players", "11"]
     argv += ["--cycles", str(args.cycles), "--opponent", args.opponent, "--opponent-cmd", args.opponent_cmd]
     argv += ["--game-log", "--out", str(out), "--timeout", str(args.timeout), "--halves", "2"]
-    argv += ["--seed", str(args.seed + n)]
+    argv += ["--seed", str(args.seed + n), "--port", str(args.port)]
     if args.realtime:
         argv.append("--realtime")
     t0 = time.monotonic()
@@ -291,6 +291,13 @@ def main() -> int:
     ap.add_argument("--timeout", type=float, default=3600.0, help="seconds each match may take")
     ap.add_argument("--out", default="rcss-series")
     ap.add_argument("--seed", type=int, default=0, help="match n gets the server's player-type seed SEED+n")
+    ap.add_argument(
+        "--port",
+        type=int,
+        default=6000,
+        help="the server's player port (the opponent's command gets it as {port}); a second series beside "
+        "the first needs another port and its own ROS_DOMAIN_ID",
+    )
     args = ap.parse_args()
     if args.again:
         return again(Path(args.again), args.team)
