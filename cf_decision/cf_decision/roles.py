@@ -23,6 +23,7 @@ _FORMATION: dict[int, tuple[Role, float, float]] = {
     10: (Role.FORWARD, 5.0, 0.0),
     11: (Role.FORWARD, 2.0, -16.0),
 }
+UP_SHIFT = {Role.DEFENDER: 0.7, Role.MIDFIELDER: 1.0, Role.FORWARD: 1.0}  # per m of the ball in their half
 KICK_OFF_WING = 26.0  # m from the middle: where the wide forwards wait for a kick-off
 # For small teams: goalkeeper, then a forward, a defender, a midfielder, ...
 _SMALL_ORDER = [1, 10, 3, 7, 9, 4, 8, 11, 2, 6, 5]
@@ -49,7 +50,9 @@ def home_position(
     role, x, y = _FORMATION[_slot(number, team_size)]
     if role is Role.GOALKEEPER:
         return (x, 0.0)
-    shift = 0.55 * ball_x
+    # In their half the block follows the ball closer: with the ball 40 m up, midfielders 35 m
+    # behind it left a wide forward alone against eight men (HELIOS base, session 23).
+    shift = 0.55 * min(ball_x, 0.0) + UP_SHIFT[role] * max(ball_x, 0.0)
     limit = {Role.DEFENDER: (-45.0, 20.0), Role.MIDFIELDER: (-35.0, 35.0), Role.FORWARD: (-5.0, 45.0)}[role]
     hx = max(limit[0], min(limit[1], x + shift))
     if offside_x is not None and role is not Role.DEFENDER:
