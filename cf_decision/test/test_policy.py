@@ -45,6 +45,15 @@ def test_roles_and_formation_shift_with_the_ball():
     assert back < up and home_position(1, ball_x=30.0) == (-50.0, 0.0)
 
 
+def test_in_their_half_the_block_follows_the_ball_closer_than_in_ours():
+    def behind(number, ball_x):
+        return ball_x - home_position(number, ball_x=ball_x)[0]
+
+    assert behind(7, 40.0) <= 18.0 and behind(3, 40.0) < 50.0  # midfield within 18 m, the back line up
+    assert abs(home_position(7, ball_x=-20.0)[0] - (-18.0 - 0.55 * 20.0)) < 1e-9  # in our half: 0.55 m a metre
+    assert home_position(7, ball_x=10.0)[0] - home_position(7, ball_x=0.0)[0] == 10.0
+
+
 def test_fastest_player_goes_for_the_ball_and_ties_go_to_the_lower_number():
     assert choose_interceptor(7, 5, {7: 5, 8: 9})
     assert not choose_interceptor(8, 9, {7: 5, 8: 9})
