@@ -37,8 +37,8 @@ def win_the_ball(state: WorldState, ball: tuple[float, float], why: str) -> Deci
 
     Intercepting first and deciding then would give the opponent the cycles our decision and
     action need to see the ball at our feet: the action's kick skills approach the ball
-    themselves. In our half: pass it to a team-mate who gets it safely (the pass goes to where he
-    is when it is kicked), else clear it long towards the wing; in theirs: take it towards the goal.
+    themselves. In our half: pass it to a team-mate who gets it safely (to where he stands when
+    the request arrives), else clear it long towards the wing; in theirs: take it towards the goal.
     """
     if ball[0] < 0.0:
         choice = best_pass(state, ball, WIN_PASS_GAIN)
@@ -262,8 +262,8 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
         return Decision("shoot", act.Shoot(target=point(*target), power=100.0), "a hopeful shot")
     if safe is not None and safe.gain >= 0.0:
         # Keep the ball in their half: a close-control dribble there was lost 33 times in 34
-        # against HELIOS base, while a pass rated safe on the game log's truth was kept 58-82% of
-        # the time (docs/performance.md, session 23).
+        # against HELIOS base, while a ball the reach model gives a team-mate by 2 cycles on the
+        # game log's truth was kept 46-69% of the time (docs/performance.md, session 23).
         return pass_to(safe, "safe pass on")
     aim, kept = best_clearance(state, ball)
     if kept:
