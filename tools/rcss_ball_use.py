@@ -64,13 +64,14 @@ def decisions(match: Path, team: str) -> dict[int, list[tuple[int, str]]]:
 
 
 @functools.lru_cache(maxsize=4)
-def game(match: Path, team: str) -> tuple[list, str, float]:
-    """A match's frames (read once), our side, and +1 or -1: the way our attack goes along x."""
+def game(match: Path, team: str, counters: bool = False) -> tuple[list, str, float]:
+    """A match's frames (read once; ``counters``: as ``read_rcg`` gives them), our side, and +1 or -1:
+    the way our attack goes along x."""
     rcg = next(iter(sorted(match.glob("*.rcg"))), None)
     if rcg is None:
         raise FileNotFoundError(f"no game log (*.rcg) in {match}")
     side = side_of(rcg, team)
-    return read_rcg(rcg), side, 1.0 if side == "l" else -1.0
+    return read_rcg(rcg, counters), side, 1.0 if side == "l" else -1.0
 
 
 def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, str], Outcome]:

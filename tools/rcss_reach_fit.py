@@ -16,19 +16,22 @@ all at 2 or more. This is how docs/performance.md judges the model the passes ar
 from __future__ import annotations
 
 import argparse
+import itertools
 import math
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_series import kick_events, read_rcg, side_of
+from rcss_ball_use import game
+from rcss_series import kick_events
 
 from cf_decision import reach
 
 MIN_SPEED = 1.2  # m/cycle: slower touches are a dribble's pushes, not kicks to anybody
+HORIZON = reach.HORIZON  # a lead is at most this many cycles either way
 GOALIE = 0x2  # the game log's player state bit of a goalkeeper
-BANDS = (("lead <= -3", -99, -3), ("-2..0", -2, 0), ("1", 1, 1), ("2..3", 2, 3), (">= 4", 4, 99))
+BANDS = (("<= -3", -HORIZON, -3), ("-2..0", -2, 0), ("1", 1, 1), ("2..3", 2, 3), (">= 4", 4, HORIZON))
 
 
 @dataclass(frozen=True)
@@ -42,17 +45,14 @@ class Kick:
 
 def kicks(match: Path, team: str = "CF") -> list[Kick]:
     """Our kicks in play of one match, each with the truth as it started to roll and its outcome."""
-    rcg = next(iter(sorted(match.glob("*.rcg"))), None)
-    if rcg is None:
-        raise FileNotFoundError(f"no game log (*.rcg) in {match}")
-    side = side_of(rcg, team)
-    frames = read_rcg(rcg, counters=True)
+    frames, side, _ = game(match, team, counters=True)
     events = kick_events(frames)
     out = []
     for k, (i, s, number, _, _) in enumerate(events):
         if s != side or i + 1 >= len(frames) or frames[i][1] != "play_on" or frames[i + 1][1] != "play_on":
             continue
-        nxt = next(((s2, n2) for _, s2, n2, _, _ in events[k + 1 :] if (s2, n2) != (s, number)), None)
+        later = itertools.islice(events, k + 1, None)
+        nxt = next(((s2, n2) for _, s2, n2, _, _ in later if (s2, n2) != (s, number)), None)
         if nxt is None:
             continue
         ball, after = frames[i][2], frames[i + 1][2]
@@ -71,14 +71,14 @@ def lead(kick: Kick, react: int) -> int:
     path = reach.ball_path(kick.ball, kick.velocity)
     ours = reach.first_cycles(path, [(pos, False) for pos in kick.mates], react)
     theirs = reach.first_cycles(path, list(kick.opponents))
-    return (reach.HORIZON if theirs is None else theirs) - (reach.HORIZON if ours is None else ours)
+    return (HORIZON if theirs is None else theirs) - (HORIZON if ours is None else ours)
 
 
 def bands(all_kicks: list[Kick], react: int) -> list[tuple[int, int]]:
     """(kept, kicks) in each of BANDS of the lead."""
     out = [[0, 0] for _ in BANDS]
     for kick in all_kicks:
-        n = max(-99, min(99, lead(kick, react)))
+        n = lead(kick, react)
         row = next(j for j, (_, lo, hi) in enumerate(BANDS) if lo <= n <= hi)
         out[row][0] += kick.kept
         out[row][1] += 1
@@ -87,7 +87,7 @@ def bands(all_kicks: list[Kick], react: int) -> list[tuple[int, int]]:
 
 def table(all_kicks: list[Kick], reacts: list[int]) -> str:
     head = "| team-mates set off after | " + " | ".join(f"lead {name}" for name, _, _ in BANDS) + " |"
-    lines = [head.replace("lead lead", "lead"), "|---|" + "---:|" * len(BANDS)]
+    lines = [head, "|---|" + "---:|" * len(BANDS)]
     for react in reacts:
         cells = [f"{kept}/{n} ({kept / n:.0%})" if n else "-" for kept, n in bands(all_kicks, react)]
         lines.append(f"| {react} cycle{'s' if react != 1 else ''} | " + " | ".join(cells) + " |")

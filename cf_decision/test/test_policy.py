@@ -316,7 +316,9 @@ def test_a_ball_won_in_our_half_goes_to_a_team_mate_who_gets_it_safely_else_is_c
     free = [holder, mate(8, -15.0, 20.0), opp(10, -35.0, -6.0)]
     d = decide(state((-32.0, 4.0), ball=(-30.8, 5.0), players=free, number=4), 4, 11, {4: 1, 7: 5})
     assert d.method == "pass" and "win it and pass it" in d.why
-    assert d.action.to.player_number == 8 and d.action.target is None  # to him, where he is when it is kicked
+    assert (
+        d.action.to.player_number == 8 and d.action.target is None
+    )  # to him, where he stands when the request arrives
     marked = [holder, mate(8, -15.0, 20.0), opp(10, -16.0, 18.0), opp(11, -22.0, 12.0)]
     d = decide(state((-32.0, 4.0), ball=(-30.8, 5.0), players=marked, number=4), 4, 11, {4: 1, 7: 5})
     assert d.method == "pass" and "win it and clear it" in d.why and abs(d.action.target.y) == 25.0
