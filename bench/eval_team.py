@@ -3,7 +3,8 @@
 Plays seeded matches on the simulator core, in-process and without ROS, but through the same
 pieces the nodes use: each cf_decision player perceives with `perception.observe` (view cone,
 noise), decides with `cf_decision.policy.decide` and acts through `skills.skill_for`; team-mates
-share their times to the ball as the decision components do over ACL.
+share their times to the ball and the passes they ask for as the decision components do over ACL
+(a pass is heard in the next cycle).
 
     python bench/eval_team.py [--matches 10] [--players 11] [--half-cycles 1500]
 """
@@ -15,6 +16,7 @@ import random
 import statistics
 
 from cf_decision.policy import decide
+from cf_decision.receive import Announced, to_announce
 from cf_decision.requests import same_request
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.without_ball import NEVER, state_eta
@@ -33,6 +35,7 @@ class PolicyTeam:
         self.rng = random.Random(seed)
         self.current: dict[int, tuple[tuple, object]] = {}
         self.takers: dict[int, SetPieceTaker] = {}
+        self.passes: dict[int, dict[int, Announced]] = {}  # hearer -> passer -> the pass he heard
         self.size = sum(1 for p in sim.world.players.values() if p.side is side)
 
     def commands(self) -> None:
@@ -46,10 +49,13 @@ class PolicyTeam:
             eta = state_eta(st)
             if eta is not None:
                 claims[n] = eta if may_touch[n] else NEVER
+        asked = []
         for n, st in states.items():
             me = w.player(self.side, n)
-            decision = decide(st, n, self.size, claims, may_touch[n])
+            decision = decide(st, n, self.size, claims, may_touch[n], list(self.passes.get(n, {}).values()))
             self.takers[n].decided(st, decision)
+            if to_announce(st, decision):
+                asked.append((n, decision.action))
             key = (decision.method, decision.action)
             current = self.current.get(n)
             if current is None or not same_request(current[0], key):
@@ -65,6 +71,11 @@ class PolicyTeam:
                     self.sim.command(self.side, n, cmd[0], *cmd[1:])
             if step.status != "running":
                 self.current.pop(n, None)
+        for passer, action in asked:
+            for n, st in states.items():
+                if n != passer and st.ball and st.ball.positioning:
+                    ball = (st.ball.positioning.x, st.ball.positioning.y)
+                    self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, st.time + 1)
 
 
 def play(seed: int, players: int, half_cycles: int) -> dict:

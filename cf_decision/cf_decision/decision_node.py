@@ -6,7 +6,9 @@ perceived cycle asks the policy what to do; a new decision becomes a
 fipa-request to the action provider. Team-mates' decision components
 exchange their times to the ball (``inform`` with the intended
 ``(exec Player intercept ...)`` and an ``:X-eta`` parameter), which the policy
-uses to pick who goes for the ball.
+uses to pick who goes for the ball, and the passes they ask for in play
+(``inform`` with the same ``(exec Player pass ...)`` the action provider gets),
+so that the receiver sets off before the ball is seen rolling.
 
 Redundancy: providers are looked up again for every request, so when the one
 in use is withdrawn or suspect the next healthy one takes over (within one
@@ -31,12 +33,14 @@ from cf_lang import Exec, LanguageError, parse_expr
 from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.expr import to_sexp
 from cf_lang.ontology import Team, WorldState
+from cf_lang.ontology import actions as act
 from cf_lang.sexp import dumps
 
 from .policy import decide
+from .receive import Announced, to_announce
 from .requests import ActionRequests, aim_text
 from .set_piece import KICKING, SetPieceTaker
-from .situation import Decision
+from .situation import Decision, xy
 from .without_ball import NEVER, state_eta
 
 
@@ -80,6 +84,8 @@ class DecisionNode(GuardedNode, Node):
             host=host,
         )
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
+        self.passes: dict[int, Announced] = {}  # team-mate number -> the last pass he announced
+        self.last_ball: tuple[float, float] | None = None  # where I believed the ball last
         self.perception: str | None = None
         self.subscription = None
         self.last_inform = 0.0
@@ -134,10 +140,11 @@ class DecisionNode(GuardedNode, Node):
         if self.last_time is not None and state.time > self.last_time + 1:
             self.requests.stats.missed += state.time - self.last_time - 1
         self.last_time = state.time
+        self.last_ball = xy(state.ball.positioning) if state.ball else None
         now = time.monotonic()
         claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
         may_touch = self.taker.may_touch(state)
-        decision = decide(state, self.number, self.team_size, claims, may_touch)
+        decision = decide(state, self.number, self.team_size, claims, may_touch, list(self.passes.values()))
         self.taker.decided(state, decision)
         self._announce(state, may_touch)
         if self.requests.wants(decision.method, decision.action):
@@ -146,16 +153,22 @@ class DecisionNode(GuardedNode, Node):
                 self.requests.stats.chose(decision.why)
                 self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}{aim_text(state, decision)}")
             self._request(decision)
+        if to_announce(state, decision):  # every cycle until it is kicked: the kick is due the next
+            self._tell_mates(self._exec(decision))
 
     def _request(self, decision: Decision) -> None:
         provider = self.agent.provider("Action", team=self.team, player_number=self.number)
         if provider is None:
             return
-        expr = Exec("Player", decision.method, {"playerNumber": self.number, "whichTeam": Team.OUR}, decision.action)
-        content = dumps(to_sexp(expr))
+        content = self._exec(decision)
         future = self.agent.request(provider, content, timeout=3.0)
         self.requests.sent(decision.method, decision.action, future)
         future.add_done_callback(guard(self._on_answer, self.get_logger(), "the answer to a request"))
+
+    def _exec(self, decision: Decision) -> str:
+        """The ``(exec Player <method> ...)`` text of ``decision`` for my player."""
+        expr = Exec("Player", decision.method, {"playerNumber": self.number, "whichTeam": Team.OUR}, decision.action)
+        return dumps(to_sexp(expr))
 
     def _on_answer(self, future) -> None:
         # A request we replaced is answered failure by the action component: that says nothing
@@ -169,31 +182,32 @@ class DecisionNode(GuardedNode, Node):
             return
         if not may_touch:
             eta = NEVER
+        content = f"(exec Player intercept :playerNumber {self.number} :whichTeam our)"
+        self._tell_mates(content, (("X-eta", str(eta)),))
+
+    def _tell_mates(self, content: str, user: tuple = ()) -> None:
+        """Inform my team-mates' decision components of ``content``."""
         mates = [
             e.name
             for e in self.agent.providers("PlayerDecision", team=self.team)
             if e.record.player_number != self.number
         ]
-        if not mates:
-            return
-        content = f"(exec Player intercept :playerNumber {self.number} :whichTeam our)"
-        self.agent.send(
-            AclMessage(
-                Performative.INFORM,
-                receivers=tuple(AgentId(m) for m in mates),
-                content=content,
-                user=(("X-eta", str(eta)),),
+        if mates:
+            self.agent.send(
+                AclMessage(Performative.INFORM, receivers=tuple(AgentId(m) for m in mates), content=content, user=user)
             )
-        )
 
     def _on_message(self, msg: AclMessage) -> None:
         if msg.performative is not Performative.INFORM:
             return
-        eta = dict(msg.user).get("X-eta")
         try:
             expr = parse_expr(msg.content or "")
             number = expr.key["playerNumber"]
-            self.claims[number] = (int(eta), time.monotonic())
+            if expr.method == "pass" and isinstance(expr.action, act.Pass):
+                if self.last_ball is not None and self.last_time is not None:
+                    self.passes[number] = Announced(number, expr.action, self.last_ball, self.last_time + 1)
+                return
+            self.claims[number] = (int(dict(msg.user)["X-eta"]), time.monotonic())
         except (LanguageError, AttributeError, KeyError, TypeError, ValueError):
             return
 

@@ -24,7 +24,9 @@ What it does, in order:
 - the team-mate chosen to go for the ball (fastest to it; ties to the lower
   number) intercepts; when an opponent has the ball, he goes for it and plays
   it in one request: in our half to a team-mate up the field who gets it
-  safely, else clear; in theirs towards the goal; in our half the second
+  safely, else clear; in theirs towards the goal; the team-mate a pass was
+  announced to (to a point: the first to reach its path) sets off at once to
+  where he meets it, and waits there facing the ball; in our half the second
   fastest stands in his way to our goal, facing the ball; any player within
   tackling reach of an opponent's ball goes for it; the others hold their
   formation position, shifted with the ball, facing the ball; while a team-mate
@@ -34,10 +36,13 @@ What it does, in order:
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from cf_lang.ontology import PlayMode, WorldState
 from cf_lang.ontology import actions as act
 
 from .goalkeeper import goalkeeper
+from .receive import Announced, meeting
 from .roles import Role, home_position, kick_off_position, role_of
 from .situation import (
     FIELD_HALF_LENGTH,
@@ -68,11 +73,20 @@ from .without_ball import (
 )
 
 TACKLE_REACH = 2.0  # m: rcssserver's tackle_dist, the furthest a tackle reaches ahead of the body
+MEET_SLACK = 0.5  # m: how near the point a pass is met at the receiver waits for it
 SUPPORT_SLACK = 1.5  # m: how near the open spot a supporting player goes (a lane is narrow)
 
 
-def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int], may_touch: bool = True) -> Decision:
-    """The action for player ``number`` now. ``claims``: team-mates' announced times to the ball.
+def decide(
+    state: WorldState,
+    number: int,
+    team_size: int,
+    claims: dict[int, int],
+    may_touch: bool = True,
+    passes: Sequence[Announced] = (),
+) -> Decision:
+    """The action for player ``number`` now. ``claims``: team-mates' announced times to the ball;
+    ``passes``: the passes team-mates announced lately.
 
     ``may_touch`` False: this player took our set piece and nobody else has touched the ball yet.
     """
@@ -104,6 +118,12 @@ def decide(state: WorldState, number: int, team_size: int, claims: dict[int, int
         if contested:
             return win_the_ball(state, ball, f"fastest to a contested ball ({my_eta} cycles)")
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
+    meet = meeting(state, number, list(passes)) if may_touch and mode is PlayMode.PLAY_ON else None
+    if meet is not None:
+        # Set off the moment the pass is asked for, not once the ball is seen rolling: to where it
+        # is met, and wait there facing it until it is the nearest's to intercept.
+        spot, cycles = meet
+        return hold(me_pos, spot, f"meet the pass ({cycles} cycles)", MEET_SLACK, hurry=True)
     if mode is PlayMode.KICK_OFF_OUR:
         # The taker may look before he kicks: a wide forward drifting in meanwhile closes the space
         # the kick-off's pass is meant for.

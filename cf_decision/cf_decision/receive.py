@@ -1,0 +1,93 @@
+"""A pass a team-mate announced (ROS-free): which of us meets it, and where.
+
+The passer's decision tells its team-mates' decisions the pass it asked for, the moment it asks
+for it (an inform whose content is the same ``(exec Player pass ...)``). Without that, a receiver
+set off only once his own perception showed the ball rolling and the passer's claim on it had
+lapsed: 3-4 cycles after the kick on rcssserver, where the real teams' receivers set off after 1-2
+(docs/performance.md, session 24).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from cf_lang.ontology import PlayMode, WorldState
+from cf_lang.ontology import actions as act
+
+from . import reach
+from .situation import KICKABLE, Decision, dist, play_mode, sides, xy
+from .with_ball import CLEAR_SPEED
+
+AWAIT_MAX = 20  # cycles after its kick that a pass is awaited at most
+
+Point = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Announced:
+    """A team-mate's pass request as heard: who asked, the action, where the ball was (as the
+    hearer believed) and the game time it is taken to leave the foot (the cycle after it was asked
+    for: the earliest the action kicks it)."""
+
+    passer: int
+    action: act.Pass
+    ball: Point
+    kicked: int
+
+
+def to_announce(state: WorldState, decision: Decision) -> bool:
+    """Whether team-mates are told of ``decision``: a pass asked for in play with the ball at my
+    feet, so about to be kicked (not a ball still to be won, nor a set piece's)."""
+    me, ball = state.me, state.ball
+    if not isinstance(decision.action, act.Pass) or play_mode(state) is not PlayMode.PLAY_ON:
+        return False
+    if not (me and me.positioning and ball and ball.positioning):
+        return False
+    return dist(xy(me.positioning), xy(ball.positioning)) <= KICKABLE
+
+
+def pass_path(pass_: Announced, me: int, my_pos: Point, mates: dict[int, Point]) -> list[Point] | None:
+    """The path the ball is foreseen to take (None: the team-mate it goes to is not known)."""
+    if pass_.action.to is not None:
+        number = pass_.action.to.player_number
+        target = my_pos if number == me else mates.get(number)
+    else:
+        target = xy(pass_.action.target)
+    if target is None or dist(pass_.ball, target) < 1.0:
+        return None
+    d = dist(pass_.ball, target)
+    power = pass_.action.power
+    speed = reach.pass_speed(d) if power is None else CLEAR_SPEED * power / 100.0
+    return reach.kicked_path(pass_.ball, target, speed)
+
+
+def meeting(state: WorldState, number: int, passes: list[Announced]) -> tuple[Point, int] | None:
+    """Where I meet the latest pass a team-mate announced, and in how many cycles, if it is mine to meet.
+
+    Mine: passed to me, or, passed to a point, I am the team-mate who reaches its path first (as I
+    believe: the passer left out, ties to the lower number). The ball is taken to roll from its kick; None once it has rolled past everyone's reach, or after AWAIT_MAX cycles.
+    """
+    if not passes or state.me is None or state.me.positioning is None:
+        return None
+    pass_ = max(passes, key=lambda p: p.kicked)
+    elapsed = state.time - pass_.kicked
+    if not -2 <= elapsed <= AWAIT_MAX or pass_.passer == number:
+        return None
+    me = xy(state.me.positioning)
+    mates = {n: pos for n, pos in sides(state)[0] if n != pass_.passer}
+    to = pass_.action.to.player_number if pass_.action.to is not None else None
+    if to is not None and to != number:
+        return None
+    path = pass_path(pass_, number, me, mates)
+    if path is None or elapsed >= len(path):
+        return None
+    rest = path[max(0, elapsed) :]
+    react = reach.TURN_CYCLES if elapsed <= 0 else 0  # once it rolls: on my way already
+    mine = reach.cycles_to_path(me, rest, react=react)
+    if mine is None:
+        return None
+    if to is None:
+        others = ((reach.cycles_to_path(pos, rest, react=react), n) for n, pos in mates.items())
+        if any(c is not None and (c, n) < (mine, number) for c, n in others):
+            return None
+    return rest[mine - 1], mine
