@@ -1,0 +1,72 @@
+"""The receiver of an announced pass: who meets it, where, and for how long it is awaited."""
+
+from __future__ import annotations
+
+import math
+
+from test_policy import at, mate, state
+
+from cf_decision.policy import decide
+from cf_decision.receive import AWAIT_MAX, Announced, meeting, to_announce
+from cf_decision.situation import Decision
+from cf_lang.ontology import Player, PlayMode, Team
+from cf_lang.ontology import actions as act
+
+
+def to(n):
+    return act.Pass(to=Player(player_number=n, which_team=Team.OUR))
+
+
+def on_segment(p, a, b, slack=0.5):
+    return math.dist(a, p) + math.dist(p, b) <= math.dist(a, b) + slack
+
+
+def test_a_pass_to_me_is_met_on_its_way_before_the_ball_is_seen_rolling():
+    ball, me = (-30.0, 0.0), (-20.0, -10.0)
+    st = state(me, ball, [mate(4, -30.5, 0.0)], number=2)  # time 100; the ball still at the passer's feet
+    passes = [Announced(4, to(2), ball, 101)]
+    spot, cycles = meeting(st, 2, passes)
+    assert on_segment(spot, ball, me) and math.dist(spot, me) > 1.0 and cycles > 0
+    d = decide(st, 2, 11, {4: 0}, passes=passes)
+    assert d.method == "moveTo" and d.action.speed == 100.0 and "meet the pass" in d.why
+    assert math.dist((d.action.target.x, d.action.target.y), spot) < 0.01
+    # Without the word from the passer, blue 2 leaves the ball to him and does not run to it.
+    plain = decide(st, 2, 11, {4: 0})
+    assert "meet" not in plain.why
+
+
+def test_a_pass_into_space_is_met_by_the_team_mate_first_on_its_path_only():
+    ball = (0.0, 0.0)
+    into_space = act.Pass(target=at(20.0, 10.0))
+    passes = [Announced(4, into_space, ball, 101)]
+    near, far = (15.0, 12.0), (5.0, 25.0)
+    st_near = state(near, ball, [mate(4, -0.5, 0.0), mate(9, *far)], number=8)
+    st_far = state(far, ball, [mate(4, -0.5, 0.0), mate(8, *near)], number=9)
+    spot, _ = meeting(st_near, 8, passes)
+    assert on_segment(spot, ball, (20.0, 10.0))
+    assert meeting(st_far, 9, passes) is None
+    # A pass to another team-mate is not mine; my own pass is not mine to meet.
+    assert meeting(st_near, 8, [Announced(4, to(9), ball, 101)]) is None
+    assert meeting(st_near, 8, [Announced(8, into_space, ball, 101)]) is None
+
+
+def test_a_pass_is_awaited_until_it_has_rolled_past_and_never_longer_than_await_max():
+    ball, me = (-30.0, 0.0), (-20.0, -10.0)
+    st = state(me, ball, [mate(4, -30.5, 0.0)], number=2)
+    assert meeting(st, 2, [Announced(4, to(2), ball, 100 - AWAIT_MAX - 1)]) is None
+    # 25 m at a pass's pace: rolled past a man 14 m away long before 20 cycles are up.
+    long = act.Pass(target=at(-5.0, 0.0))
+    assert meeting(st, 2, [Announced(4, long, ball, 101)]) is not None
+    assert meeting(st, 2, [Announced(4, long, ball, 100 - 18)]) is None
+    # Of two passes the latest counts.
+    newer = [Announced(4, to(2), ball, 90), Announced(4, to(9), ball, 101)]
+    assert meeting(st, 2, newer) is None
+
+
+def test_only_a_pass_in_play_with_the_ball_at_my_feet_is_told():
+    a_pass = Decision("pass", to(9), "forward pass")
+    assert to_announce(state((0.0, 0.0), (0.5, 0.0)), a_pass)
+    assert not to_announce(state((0.0, 0.0), (3.0, 0.0)), a_pass)  # a ball still to be won
+    assert not to_announce(state((0.0, 0.0), (0.5, 0.0), mode=PlayMode.FREE_KICK_OUR), a_pass)
+    dribble = Decision("dribble", act.Dribble(target=at(10.0, 0.0)), "go")
+    assert not to_announce(state((0.0, 0.0), (0.5, 0.0)), dribble)

@@ -1,0 +1,151 @@
+"""A decision component talks with its team-mates in ACL: it tells them the pass it asks for, and
+sets off at once when a team-mate tells it a pass is coming.
+
+The real decision component of blue 2 runs as a process; its perception, its action provider and
+two team-mates' decision components are agents of the test, speaking the Framework Language over
+DDS as any component would.
+"""
+
+from __future__ import annotations
+
+import math
+
+from cf_commag.agent import Agent
+from cf_lang import Exec, parse_expr
+from cf_lang.acl import AclMessage, AgentId, Performative
+from cf_lang.expr import unparse
+from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
+from cf_lang.ontology import actions as act
+from cf_sim_backend.services import PerceptionService
+from cf_system import executable, start_commag
+
+
+def at(x, y):
+    return AbsolutePositioning(x=x, y=y, yaw=0.0)
+
+
+def world(time, me, ball, mates):
+    players = [Player(player_number=n, which_team=Team.OUR, positioning=at(*pos)) for n, pos in mates.items()]
+    players.append(Player(player_number=1, which_team=Team.OPP, positioning=at(50.0, 0.0), is_goalie=True))
+    return WorldState(
+        time=time,
+        me=Player(player_number=2, which_team=Team.OUR, positioning=at(*me)),
+        ball=Ball(positioning=at(*ball)),
+        players=tuple(players),
+        game=Game(time=time, play_mode=PlayMode.PLAY_ON),
+    )
+
+
+def off_line(p, a, b):
+    """Distance of point p from the segment a-b."""
+    ax, ay, bx, by = *a, *b
+    t = max(0.0, min(1.0, ((p[0] - ax) * (bx - ax) + (p[1] - ay) * (by - ay)) / ((bx - ax) ** 2 + (by - ay) ** 2)))
+    return math.hypot(p[0] - (ax + t * (bx - ax)), p[1] - (ay + t * (by - ay)))
+
+
+def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_rolls(procs, probe, tag, tmp_path):
+    team = f"blue{tag}"
+    start_commag(procs, tag, tmp_path)
+    procs.start(
+        [
+            executable("cf_decision", "decision"),
+            "--ros-args",
+            "-p",
+            f"commag:=/commag_{tag}",
+            "-p",
+            f"team:={team}",
+            "-p",
+            "number:=2",
+            "-p",
+            "lease:=2.0",
+        ],
+        "decision",
+    )
+    common = {"team": team, "commag": f"/commag_{tag}", "lease": 2.0}
+    perception = PerceptionService(
+        Agent(probe.node, name=f"perception_{tag}", service_class="WorldModel", player_number=2, **common), "not yet"
+    )
+    requests = []
+
+    def on_request(msg, responder):
+        requests.append(parse_expr(msg.content))
+        responder.agree()
+
+    action = Agent(probe.node, name=f"action_{tag}", service_class="Action", player_number=2, **common)
+    action.serve("fipa-request", on_request)
+    heard = {4: [], 9: []}
+    mates = {
+        n: Agent(
+            probe.node,
+            name=f"mate{n}_{tag}",
+            service_class="PlayerDecision",
+            player_number=n,
+            on_message=lambda msg, n=n: heard[n].append(msg),
+            **common,
+        )
+        for n in heard
+    }
+    decision = f"{team}_2_decision"
+    probe.wait_kind(decision, "registered", timeout=60)
+    clock = iter(range(1, 10**6))
+
+    def play(state_of, done, what, seconds=60.0):
+        """Publish a perceived cycle every 0.1 s (mate 4 claiming the ball) until ``done()``."""
+
+        def cycle():
+            perception.publish(state_of(next(clock)))
+            claim = AclMessage(
+                Performative.INFORM,
+                receivers=(AgentId(decision),),
+                content="(exec Player intercept :playerNumber 4 :whichTeam our)",
+                user=(("X-eta", "0"),),
+            )
+            mates[4].send(claim)
+            probe.spin_for(0.1)
+            return done()
+
+        probe.spin_until(cycle, timeout=seconds, what=what)
+
+    # 1. Mate 4 has the ball at (-30, 0); blue 2 stands at (-20, -10) and waits.
+    here, ball = (-20.0, -10.0), (-30.0, 0.0)
+    team_mates = {4: (-30.5, 0.0), 9: (10.0, 0.0)}
+    play(lambda t: world(t, here, ball, team_mates), lambda: requests, "blue 2's first request")
+    # 2. Mate 4 tells it it passes to blue 2: blue 2 runs to meet the ball on its way, still at mate
+    # 4's feet in its perception.
+    to_me = Exec(
+        "Player",
+        "pass",
+        {"playerNumber": 4, "whichTeam": Team.OUR},
+        act.Pass(to=Player(player_number=2, which_team=Team.OUR)),
+    )
+    told = AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=unparse(to_me))
+    mates[4].send(told)
+
+    def meeting():
+        moves = [r.action for r in requests if isinstance(r, Exec) and r.method == "moveTo"]
+        return next((m for m in moves if off_line((m.target.x, m.target.y), ball, here) < 1.0), None)
+
+    meet = None
+
+    def met():
+        nonlocal meet
+        meet = meeting()
+        return meet
+
+    play(lambda t: world(t, here, ball, team_mates), met, "blue 2 to run to meet the pass")
+    assert meet.target.x > here[0] - 10.0 and meet.speed == 100.0  # towards the ball, in a hurry
+
+    # 3. Now blue 2 has the ball, mate 9 stands free 20 m up the field: blue 2 passes, and tells
+    # its team-mates; the text they get is the request the action provider got.
+    mine = (0.0, 0.0)
+    free = {4: (-30.0, 0.0), 9: (20.0, 5.0)}
+
+    def told_pass():
+        return [m for m in heard[9] if (m.content or "").startswith("(exec Player pass :playerNumber 2")]
+
+    play(lambda t: world(t, mine, (0.5, 0.0), free), told_pass, "blue 2 to tell its pass")
+    passes = [r for r in requests if isinstance(r, Exec) and r.method == "pass"]
+    assert passes, requests
+    said = parse_expr(told_pass()[0].content)
+    assert said == passes[-1] and told_pass()[0].performative is Performative.INFORM
+    assert any((m.content or "").startswith("(exec Player pass :playerNumber 2") for m in heard[4])
