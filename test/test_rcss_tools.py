@@ -11,7 +11,7 @@ from rcss_ball_use import ball_use, reason, table, territory, territory_table
 from rcss_picture import picture
 from rcss_picture import table as picture_table
 from rcss_reach_fit import kicks as reach_kicks
-from rcss_reach_fit import lead
+from rcss_reach_fit import lead, set_off, set_off_table
 from rcss_reach_fit import table as reach_table
 from rcss_series import again, match_stats, read_rcg
 from rcss_set_pieces import kind_of, set_pieces
@@ -217,3 +217,31 @@ def test_the_reach_model_is_replayed_on_the_game_logs_truth_of_each_kick(tmp_pat
     assert lead(first, 3) < lead(first, 1)  # a team-mate who sets off later is there later
     text = reach_table([first, second], [1])
     assert "| 1 cycle | 0/1 (0%) | - | - | - | 1/1 (100%) |" in text
+
+
+def test_a_receiver_sets_off_in_the_first_cycle_he_moves_towards_the_balls_path(tmp_path):
+    """CF 9 passes 2 m/cycle along y = 0; CF 10, 6 m off the line, stands 2 cycles, then runs to it."""
+    where = {("l", 9): (10.0, 0.0), ("l", 10): (22.0, 6.0), ("r", 3): (45.0, 10.0)}
+    kicks_of = {key: 0 for key in where}
+    ball, velocity = 10.5, 0.0
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 16):
+        if t == 2:
+            kicks_of[("l", 9)] += 1
+            velocity = 2.0
+        elif t > 2:
+            ball, velocity = ball + velocity, velocity * 0.94
+        if t >= 5:
+            x, y = where[("l", 10)]
+            where[("l", 10)] = (x, max(0.5, y - 0.8))
+        players = " ".join(
+            f"(({side} {n}) 0 0x1 {x} {y} 0 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) "
+            f"(c {kicks_of[(side, n)]} 0 0 0 0 0 0 0 0 0 0))"
+            for (side, n), (x, y) in where.items()
+        )
+        lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players})")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    lags = set_off(tmp_path, "CF")
+    assert lags["us"] == {3: 1} and not lags["them"]
+    text = set_off_table(lags, "CF")
+    assert "| CF | 1 | 0% | 0% | 100% |" in text and "| opponents | 0 | - |" in text

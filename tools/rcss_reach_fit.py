@@ -11,6 +11,11 @@ cycles, opponents after the model's TURN_CYCLES; none within the model's horizon
 HORIZON). The outcome is the next kick by anyone but the kicker: a team-mate's keeps the ball.
 One row per REACT; a model that foresees well keeps few balls at a lead of 0 or less and nearly
 all at 2 or more. This is how docs/performance.md judges the model the passes are chosen with.
+
+A second table says how soon receivers set off, for both teams: for each kick in play (either
+side's) the receiver is the kicker's team-mate the model (react 1) puts first on the true path,
+if he has SET_OFF_RUN metres or more to run to where it puts him; he sets off in the first cycle
+he moves SET_OFF_STEP or more towards that point (never within SET_OFF_WITHIN cycles: "-").
 """
 
 from __future__ import annotations
@@ -19,6 +24,7 @@ import argparse
 import itertools
 import math
 import sys
+from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -31,6 +37,9 @@ from cf_decision import reach
 MIN_SPEED = 1.2  # m/cycle: slower touches are a dribble's pushes, not kicks to anybody
 HORIZON = reach.HORIZON  # a lead is at most this many cycles either way
 GOALIE = 0x2  # the game log's player state bit of a goalkeeper
+SET_OFF_RUN = 2.0  # m: a receiver nearer than this to the ball's path need not run
+SET_OFF_STEP = 0.4  # m in one cycle towards where he meets the ball: he is on his way
+SET_OFF_WITHIN = 8  # cycles after the kick looked at
 BANDS = (("<= -3", -HORIZON, -3), ("-2..0", -2, 0), ("1", 1, 1), ("2..3", 2, 3), (">= 4", 4, HORIZON))
 
 
@@ -94,6 +103,58 @@ def table(all_kicks: list[Kick], reacts: list[int]) -> str:
     return "\n".join(lines)
 
 
+def set_off(match: Path, team: str = "CF") -> dict[str, Counter]:
+    """Cycles after each kick in play before its receiver set off, for "us" and "them" (None: not
+    within SET_OFF_WITHIN cycles)."""
+    frames, side, _ = game(match, team)
+    out = {"us": Counter(), "them": Counter()}
+    for i, s, number, _, _ in kick_events(frames):
+        if i + SET_OFF_WITHIN >= len(frames) or frames[i][1] != "play_on" or frames[i + 1][1] != "play_on":
+            continue
+        ball, after = frames[i][2], frames[i + 1][2]
+        velocity = (after[0] - ball[0], after[1] - ball[1])
+        if math.hypot(*velocity) < MIN_SPEED:
+            continue
+        path = reach.ball_path(ball, velocity)
+        firsts = [
+            (n, p[1], (p[2], p[3]))
+            for p in frames[i][3]
+            if p[0] == s and p[1] != number and (n := reach.cycles_to_path((p[2], p[3]), path)) is not None
+        ]
+        if not firsts:
+            continue
+        n, receiver, start = min(firsts)
+        meet = path[n - 1]
+        run = math.dist(start, meet)
+        if run < SET_OFF_RUN:
+            continue
+        way = ((meet[0] - start[0]) / run, (meet[1] - start[1]) / run)
+        track = [next((p[2], p[3]) for p in f[3] if p[:2] == (s, receiver)) for f in frames[i : i + SET_OFF_WITHIN + 1]]
+        lag = next(
+            (
+                j
+                for j, (a, b) in enumerate(itertools.pairwise(track), start=1)
+                if (b[0] - a[0]) * way[0] + (b[1] - a[1]) * way[1] >= SET_OFF_STEP
+            ),
+            None,
+        )
+        out["us" if s == side else "them"][lag] += 1
+    return out
+
+
+def set_off_table(lags: dict[str, Counter], team: str) -> str:
+    cycles = [*range(1, SET_OFF_WITHIN + 1), None]
+    lines = [
+        "| receivers of | kicks | " + " | ".join(str(c) if c else "-" for c in cycles) + " |",
+        "|---|---:|" + "---:|" * len(cycles),
+    ]
+    for who, name in (("us", team), ("them", "opponents")):
+        n = sum(lags[who].values())
+        cells = [f"{lags[who][c] / n:.0%}" if n else "-" for c in cycles]
+        lines.append(f"| {name} | {n} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("matches", nargs="+", type=Path, help="match directories (rcss_match.py --out)")
@@ -106,6 +167,12 @@ def main() -> int:
         f"{sum(k.kept for k in all_kicks)} kept"
     )
     print(table(all_kicks, [int(v) for v in args.react.split(",")]))
+    lags = {"us": Counter(), "them": Counter()}
+    for match in args.matches:
+        for who, counts in set_off(match, args.team).items():
+            lags[who].update(counts)
+    print(f"\ncycles after the kick before the receiver set off ({SET_OFF_STEP:g} m or more towards the ball's path)")
+    print(set_off_table(lags, args.team))
     return 0
 
 
