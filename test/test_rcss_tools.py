@@ -190,6 +190,15 @@ def test_the_opponents_a_decision_believed_are_set_against_the_game_logs_truth(t
     assert "| forward pass to team-mate | 2 | 2 | 1 | 50% |" in picture_table(rows, 40.0, 3.0)
 
 
+def players_at(where: dict, kicks_of: dict) -> str:
+    """A show line's players at (x, y), with their kick counters; r 1 is a goalkeeper (state 0x3)."""
+    return " ".join(
+        f"(({side} {n}) 0 {'0x3' if (side, n) == ('r', 1) else '0x1'} {x} {y} 0 0 0 0 (v h 120) (fp 0 0) "
+        f"(s 8000 1 1 130600) (c {kicks_of[(side, n)]} 0 0 0 0 0 0 0 0 0 0))"
+        for (side, n), (x, y) in where.items()
+    )
+
+
 def test_the_reach_model_is_replayed_on_the_game_logs_truth_of_each_kick(tmp_path):
     """CF 9 passes 2 m/cycle to 10, 9.5 m on (kept); 10 kicks it on with nobody of ours ahead (lost)."""
     where = {("l", 9): (10.0, 0.0), ("l", 10): (20.0, 0.0), ("r", 3): (40.0, 0.0), ("r", 1): (50.0, 0.0)}
@@ -203,12 +212,7 @@ def test_the_reach_model_is_replayed_on_the_game_logs_truth_of_each_kick(tmp_pat
             velocity = 2.0 if t < 12 else 0.0
         elif t > 2:
             ball, velocity = ball + velocity, velocity * 0.94
-        players = " ".join(
-            f"(({side} {n}) 0 {'0x3' if n == 1 and side == 'r' else '0x1'} {x} {y} 0 0 0 0 (v h 120) (fp 0 0) "
-            f"(s 8000 1 1 130600) (c {kicks_of[(side, n)]} 0 0 0 0 0 0 0 0 0 0))"
-            for (side, n), (x, y) in where.items()
-        )
-        lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players})")
+        lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players_at(where, kicks_of)})")
     (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
     first, second = reach_kicks(tmp_path, "CF")
     assert first.kept and not second.kept and abs(first.velocity[0] - 2.0) < 1e-3
@@ -234,12 +238,7 @@ def test_a_receiver_sets_off_in_the_first_cycle_he_moves_towards_the_balls_path(
         if t >= 5:
             x, y = where[("l", 10)]
             where[("l", 10)] = (x, max(0.5, y - 0.8))
-        players = " ".join(
-            f"(({side} {n}) 0 0x1 {x} {y} 0 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) "
-            f"(c {kicks_of[(side, n)]} 0 0 0 0 0 0 0 0 0 0))"
-            for (side, n), (x, y) in where.items()
-        )
-        lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players})")
+        lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players_at(where, kicks_of)})")
     (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
     lags = set_off(tmp_path, "CF")
     assert lags["us"] == {3: 1} and not lags["them"]
