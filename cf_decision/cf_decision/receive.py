@@ -46,16 +46,12 @@ def to_announce(state: WorldState, decision: Decision) -> bool:
     return dist(xy(me.positioning), xy(ball.positioning)) <= KICKABLE
 
 
-def pass_path(pass_: Announced, me: int, my_pos: Point, mates: dict[int, Point]) -> list[Point] | None:
-    """The path the ball is foreseen to take (None: the team-mate it goes to is not known)."""
-    if pass_.action.to is not None:
-        number = pass_.action.to.player_number
-        target = my_pos if number == me else mates.get(number)
-    else:
-        target = xy(pass_.action.target)
-    if target is None or dist(pass_.ball, target) < 1.0:
-        return None
+def pass_path(pass_: Announced, my_pos: Point) -> list[Point] | None:
+    """The path the ball is foreseen to take: to my feet (``:to``, which is me) or to its target."""
+    target = my_pos if pass_.action.to is not None else xy(pass_.action.target)
     d = dist(pass_.ball, target)
+    if d < 1.0:
+        return None
     power = pass_.action.power
     speed = reach.pass_speed(d) if power is None else CLEAR_SPEED * power / 100.0
     return reach.kicked_path(pass_.ball, target, speed)
@@ -65,20 +61,21 @@ def meeting(state: WorldState, number: int, passes: list[Announced]) -> tuple[Po
     """Where I meet the latest pass a team-mate announced, and in how many cycles, if it is mine to meet.
 
     Mine: passed to me, or, passed to a point, I am the team-mate who reaches its path first (as I
-    believe: the passer left out, ties to the lower number). The ball is taken to roll from its kick; None once it has rolled past everyone's reach, or after AWAIT_MAX cycles.
+    believe: the passer left out, ties to the lower number). The ball is taken to roll from its
+    kick. None once it has rolled past my reach, or AWAIT_MAX cycles after its kick.
     """
     if not passes or state.me is None or state.me.positioning is None:
         return None
     pass_ = max(passes, key=lambda p: p.kicked)
     elapsed = state.time - pass_.kicked
+    # (Heard in the cycle it was asked for, its kick is a cycle ahead; a little more: clocks differ.)
     if not -2 <= elapsed <= AWAIT_MAX or pass_.passer == number:
         return None
-    me = xy(state.me.positioning)
-    mates = {n: pos for n, pos in sides(state)[0] if n != pass_.passer}
     to = pass_.action.to.player_number if pass_.action.to is not None else None
     if to is not None and to != number:
         return None
-    path = pass_path(pass_, number, me, mates)
+    me = xy(state.me.positioning)
+    path = pass_path(pass_, me)
     if path is None or elapsed >= len(path):
         return None
     rest = path[max(0, elapsed) :]
@@ -87,7 +84,8 @@ def meeting(state: WorldState, number: int, passes: list[Announced]) -> tuple[Po
     if mine is None:
         return None
     if to is None:
-        others = ((reach.cycles_to_path(pos, rest, react=react), n) for n, pos in mates.items())
+        mates = [(n, pos) for n, pos in sides(state)[0] if n != pass_.passer]
+        others = ((reach.cycles_to_path(pos, rest, react=react), n) for n, pos in mates)
         if any(c is not None and (c, n) < (mine, number) for c, n in others):
             return None
     return rest[mine - 1], mine
