@@ -203,6 +203,8 @@ class DecisionNode(GuardedNode, Node):
         try:
             expr = parse_expr(msg.content or "")
             number = expr.key["playerNumber"]
+            if type(number) is not int or not 1 <= number <= 11 or number == self.number:
+                return  # a shirt number of a team-mate only: what is kept per sender stays bounded
             if expr.method == "pass" and isinstance(expr.action, act.Pass):
                 if self.last_ball is not None and self.last_time is not None:
                     self.passes[number] = Announced(number, expr.action, self.last_ball, self.last_time + 1)
