@@ -135,6 +135,16 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     play(lambda t: world(t, here, ball, team_mates), met, "blue 2 to run to meet the pass")
     assert meet.target.x > here[0] - 10.0 and meet.speed == 100.0  # towards the ball, in a hurry
 
+    # Bad words from a team-mate are dropped, and blue 2 plays on.
+    for content, user in (
+        ("(exec Player intercept :playerNumber 99999 :whichTeam our)", (("X-eta", "0"),)),
+        ("(exec Player intercept :playerNumber 4 :whichTeam our)", (("X-eta", "soon"),)),
+        ("(exec Player pass :playerNumber 4 :whichTeam our :power 50)", ()),  # neither :to nor :target
+        ("(exec Player pass :playerNumber 2.5 :whichTeam our :target (AbsolutePositioning :x 1 :y 2))", ()),
+        ("(exec Player pass :playerNumber 4 ((((", ()),
+    ):
+        mates[4].send(AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=content, user=user))
+
     # 3. Now blue 2 has the ball, mate 9 stands free 20 m up the field: blue 2 passes, and tells
     # its team-mates; the text they get is the request the action provider got.
     mine = (0.0, 0.0)
