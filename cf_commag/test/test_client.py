@@ -134,7 +134,13 @@ def test_subscription_informs_until_cancelled(ros, unique, tmp_path):
     ros.spin_until(lambda: len(informs) >= 6, what="6 informs")
     decision.cancel(future)
     ros.spin_until(future.done, what="cancel confirmed")
-    assert future.result().state == "cancelled" and cancelled == [True]
+    assert future.result().state == "cancelled"
+    # An update already on its way when we cancelled closes the conversation on our side (see
+    # protocols.SUBSCRIBE), maybe before the perception has read the cancel: on a loaded machine
+    # it had not yet. It does read it, once.
+    ros.spin_until(lambda: cancelled, what="the perception told of the cancel")
+    ros.spin_for(0.2)
+    assert cancelled == [True]
     assert informs[0] is None or informs[0].startswith("(Game")  # the agree carries no content
 
 
