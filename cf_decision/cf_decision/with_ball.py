@@ -19,6 +19,8 @@ SHOT_RANGE = 30.0  # in play, consider shots from within this distance
 LONG_SHOT_RANGE = 25.0  # in play, with nothing better, shoot anyway from within this distance
 SHOT_SPEED = 2.4  # m/cycle a shot is assumed to leave the foot with
 WIN_PASS_GAIN = 5.0  # m: a ball won in our half is passed on only this far up the field or further
+KEEP_GAIN = -3.0  # m: in our half a safe pass that loses no more ground than this keeps the ball
+OUR_BOX_X = -36.0  # m: ... when it is received outside our penalty area
 SAFE_MARGIN = 2  # cycles: our receiver must be this much sooner at the ball than any opponent
 OPEN_NEAR = 5.0  # m: no opponent this close, and
 OPEN_AHEAD = 15.0  # m: none this far along the way: a dribble may go at full speed
@@ -250,6 +252,8 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     straight = ways[0][0] if ways else None
     if straight is not None and open_run(state, me, straight):
         return Decision("dribble", act.Dribble(target=point(*straight), speed=100.0), "open run: carry it fast")
+    if me[0] < 0.0 and safe is not None and safe.gain >= KEEP_GAIN and ball[0] + safe.gain > OUR_BOX_X:
+        return pass_to(safe, "keep it: safe pass")
     if me[0] < 0.0:
         # In our half without a forward pass or an open run: clear it. Against real teams a short
         # pass or a dribble there reached a team-mate about one time in six and left the ball where
