@@ -426,3 +426,14 @@ def test_while_a_team_mate_has_the_ball_a_midfielder_stands_where_a_pass_reaches
 
 def dist_of(a, b):
     return math.hypot(a[0] - b[0], a[1] - b[1])
+
+
+def test_in_our_half_a_safe_pass_that_loses_little_ground_comes_before_a_clearance():
+    presser = opp(9, -20.0, 2.0)  # 10 m ahead: space, but no open run
+    beside = [mate(6, -33.0, 15.0), presser]
+    d = decide(state((-30.0, -5.0), ball=(-29.5, -5.0), players=beside), 4, 11, {})
+    assert d.method == "pass" and d.why == "keep it: safe pass to team-mate 6"
+    in_our_box = state((-38.0, -5.0), ball=(-37.5, -5.0), players=[mate(3, -42.0, 6.0), opp(9, -28.0, -2.0)])
+    assert best_pass(in_our_box, (-37.5, -5.0)) is not None  # safe, but received in our penalty area
+    d = decide(in_our_box, 4, 11, {})
+    assert d.method == "pass" and d.why == "clear the ball"
