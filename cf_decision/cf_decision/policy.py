@@ -13,7 +13,8 @@ What it does, in order:
   goal centre, further out the further the ball;
 - with the ball: shoot when close enough with a free line, else pass to the
   best open team-mate ahead, else carry it at full speed on an open run; else,
-  in our half, clear it long towards the wing; in theirs, shoot when within
+  in our half, a safe pass losing at most 3 m, received outside our penalty
+  area, else clear it long; in theirs, shoot when within
   LONG_SHOT_RANGE, else a safe pass that loses no ground, else kick it into
   space a team-mate reaches first, else dribble into space, else any safe
   pass, else take it on towards the goal;
