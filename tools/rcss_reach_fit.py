@@ -52,22 +52,30 @@ class Kick:
     kept: bool
 
 
+def launched(frames: list, i: int) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """Where the ball kicked in frame ``i`` was and its first cycle's velocity, if it was kicked in
+    play (and stayed in play) at MIN_SPEED or faster; else None."""
+    if i + 1 >= len(frames) or frames[i][1] != "play_on" or frames[i + 1][1] != "play_on":
+        return None
+    ball, after = frames[i][2], frames[i + 1][2]
+    velocity = (after[0] - ball[0], after[1] - ball[1])
+    return (ball, velocity) if math.hypot(*velocity) >= MIN_SPEED else None
+
+
 def kicks(match: Path, team: str = "CF") -> list[Kick]:
     """Our kicks in play of one match, each with the truth as it started to roll and its outcome."""
     frames, side, _ = game(match, team, counters=True)
     events = kick_events(frames)
     out = []
     for k, (i, s, number, _, _) in enumerate(events):
-        if s != side or i + 1 >= len(frames) or frames[i][1] != "play_on" or frames[i + 1][1] != "play_on":
+        start = launched(frames, i) if s == side else None
+        if start is None:
             continue
         later = itertools.islice(events, k + 1, None)
         nxt = next(((s2, n2) for _, s2, n2, _, _ in later if (s2, n2) != (s, number)), None)
         if nxt is None:
             continue
-        ball, after = frames[i][2], frames[i + 1][2]
-        velocity = (after[0] - ball[0], after[1] - ball[1])
-        if math.hypot(*velocity) < MIN_SPEED:
-            continue
+        ball, velocity = start
         players = frames[i][3]
         mates = tuple((p[2], p[3]) for p in players if p[0] == side and p[1] != number)
         opponents = tuple(((p[2], p[3]), bool(p[6] & GOALIE)) for p in players if p[0] != side)
@@ -106,16 +114,13 @@ def table(all_kicks: list[Kick], reacts: list[int]) -> str:
 def set_off(match: Path, team: str = "CF") -> dict[str, Counter]:
     """Cycles after each kick in play before its receiver set off, for "us" and "them" (None: not
     within SET_OFF_WITHIN cycles)."""
-    frames, side, _ = game(match, team)
+    frames, side, _ = game(match, team, counters=True)  # as kicks() reads them: one read per match
     out = {"us": Counter(), "them": Counter()}
     for i, s, number, _, _ in kick_events(frames):
-        if i + SET_OFF_WITHIN >= len(frames) or frames[i][1] != "play_on" or frames[i + 1][1] != "play_on":
+        start = launched(frames, i) if i + SET_OFF_WITHIN < len(frames) else None
+        if start is None:
             continue
-        ball, after = frames[i][2], frames[i + 1][2]
-        velocity = (after[0] - ball[0], after[1] - ball[1])
-        if math.hypot(*velocity) < MIN_SPEED:
-            continue
-        path = reach.ball_path(ball, velocity)
+        path = reach.ball_path(*start)
         firsts = [
             (n, p[1], (p[2], p[3]))
             for p in frames[i][3]
@@ -129,7 +134,12 @@ def set_off(match: Path, team: str = "CF") -> dict[str, Counter]:
         if run < SET_OFF_RUN:
             continue
         way = ((meet[0] - start[0]) / run, (meet[1] - start[1]) / run)
-        track = [next((p[2], p[3]) for p in f[3] if p[:2] == (s, receiver)) for f in frames[i : i + SET_OFF_WITHIN + 1]]
+        track = []
+        for f in frames[i : i + SET_OFF_WITHIN + 1]:
+            where = next(((p[2], p[3]) for p in f[3] if p[:2] == (s, receiver)), None)
+            if where is None:
+                break  # he is missing from the game log from here on (disconnected)
+            track.append(where)
         lag = next(
             (
                 j
@@ -161,16 +171,16 @@ def main() -> int:
     ap.add_argument("--team", default="CF", help="our team's name in the game log")
     ap.add_argument("--react", default="1,2,3", help="comma-separated: cycles before a team-mate sets off")
     args = ap.parse_args()
-    all_kicks = [kick for match in args.matches for kick in kicks(match, args.team)]
+    all_kicks, lags = [], {"us": Counter(), "them": Counter()}
+    for match in args.matches:  # match by match: its game log is read once for both tables
+        all_kicks += kicks(match, args.team)
+        for who, counts in set_off(match, args.team).items():
+            lags[who].update(counts)
     print(
         f"{len(all_kicks)} kicks of {args.team} in play at {MIN_SPEED:g} m/cycle or faster, "
         f"{sum(k.kept for k in all_kicks)} kept"
     )
     print(table(all_kicks, [int(v) for v in args.react.split(",")]))
-    lags = {"us": Counter(), "them": Counter()}
-    for match in args.matches:
-        for who, counts in set_off(match, args.team).items():
-            lags[who].update(counts)
     print(f"\ncycles after the kick before the receiver set off ({SET_OFF_STEP:g} m or more towards the ball's path)")
     print(set_off_table(lags, args.team))
     return 0
