@@ -90,7 +90,7 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     clock = iter(range(1, 10**6))
 
     def play(state_of, done, what, seconds=60.0):
-        """Publish a perceived cycle every 0.1 s (mate 4 claiming the ball) until ``done()``."""
+        """Publish a perceived cycle every 0.1 s (mate 4 claiming the ball) until ``done()``; its value."""
 
         def cycle():
             perception.publish(state_of(next(clock)))
@@ -104,7 +104,7 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
             probe.spin_for(0.1)
             return done()
 
-        probe.spin_until(cycle, timeout=seconds, what=what)
+        return probe.spin_until(cycle, timeout=seconds, what=what)
 
     # 1. Mate 4 has the ball at (-30, 0); blue 2 stands at (-20, -10) and waits.
     here, ball = (-20.0, -10.0), (-30.0, 0.0)
@@ -125,14 +125,7 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
         moves = [r.action for r in requests if isinstance(r, Exec) and r.method == "moveTo"]
         return next((m for m in moves if off_line((m.target.x, m.target.y), ball, here) < 1.0), None)
 
-    meet = None
-
-    def met():
-        nonlocal meet
-        meet = meeting()
-        return meet
-
-    play(lambda t: world(t, here, ball, team_mates), met, "blue 2 to run to meet the pass")
+    meet = play(lambda t: world(t, here, ball, team_mates), meeting, "blue 2 to run to meet the pass")
     assert meet.target.x > here[0] - 10.0 and meet.speed == 100.0  # towards the ball, in a hurry
 
     # Bad words from a team-mate are dropped, and blue 2 plays on.
@@ -153,9 +146,8 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     def told_pass():
         return [m for m in heard[9] if (m.content or "").startswith("(exec Player pass :playerNumber 2")]
 
-    play(lambda t: world(t, mine, (0.5, 0.0), free), told_pass, "blue 2 to tell its pass")
+    its_word = play(lambda t: world(t, mine, (0.5, 0.0), free), told_pass, "blue 2 to tell its pass")[0]
     passes = [r for r in requests if isinstance(r, Exec) and r.method == "pass"]
     assert passes, requests
-    said = parse_expr(told_pass()[0].content)
-    assert said == passes[-1] and told_pass()[0].performative is Performative.INFORM
+    assert parse_expr(its_word.content) == passes[-1] and its_word.performative is Performative.INFORM
     assert any((m.content or "").startswith("(exec Player pass :playerNumber 2") for m in heard[4])

@@ -119,7 +119,7 @@ def decide(
         if contested:
             return win_the_ball(state, ball, f"fastest to a contested ball ({my_eta} cycles)")
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
-    meet = meeting(state, number, list(passes)) if may_touch and mode is PlayMode.PLAY_ON else None
+    meet = meeting(state, number, passes) if may_touch and mode is PlayMode.PLAY_ON else None
     if meet is not None:
         # Set off the moment the pass is asked for, not once the ball is seen rolling: to where it
         # is met, and wait there facing it until it is the nearest's to intercept.

@@ -9,6 +9,7 @@ lapsed: 3-4 cycles after the kick on rcssserver, where the real teams' receivers
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from cf_lang.ontology import PlayMode, WorldState
@@ -57,7 +58,7 @@ def pass_path(pass_: Announced, my_pos: Point) -> list[Point] | None:
     return reach.kicked_path(pass_.ball, target, speed)
 
 
-def meeting(state: WorldState, number: int, passes: list[Announced]) -> tuple[Point, int] | None:
+def meeting(state: WorldState, number: int, passes: Sequence[Announced]) -> tuple[Point, int] | None:
     """Where I meet the latest pass a team-mate announced, and in how many cycles, if it is mine to meet.
 
     Mine: passed to me, or, passed to a point, I am the team-mate who reaches its path first (as I
