@@ -31,6 +31,7 @@ setup(
             "players = cf_sim_backend.embedded.players:main",
             "rcss_player = cf_sim_backend.rcss.player_node:main",
             "rcss_team = cf_sim_backend.rcss.team:main",
+            "rcss_coach = cf_sim_backend.rcss.coach:main",
         ]
     },
 )

@@ -10,11 +10,15 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+
+from cf_sim_backend.rcss.coach import PlayerType, choose_types, param_values
+from cf_sim_backend.rcss.protocol import parse
 
 SERVER = os.environ.get("RCSSSERVER", "")
 MATCH = Path(__file__).resolve().parents[1] / "tools" / "rcss_match.py"
@@ -44,14 +48,24 @@ def test_a_short_synch_match_ends_cleanly_and_our_players_kick_the_ball(tmp_path
     assert sum(p["kicks"] for p in players) > 0  # kicks that reached the ball, counted by the server
 
 
-def test_two_instances_of_our_team_play_each_other(tmp_path):
-    summary = play(tmp_path, "--players", "5", "--opponents", "5", "--cycles", "200")
+def test_two_instances_of_our_team_play_each_other_each_with_its_coach(tmp_path):
+    summary = play(tmp_path, "--players", "5", "--opponents", "5", "--cycles", "200", "--seed", "42", "--game-log")
     assert summary["team_exit_codes"] == [0, 0] and summary["server_exit_code"] == 0
     sides = {p["team"]: p["side"] for p in summary["players"]}
     assert sides == {"CF": "l", "CFB": "r"}
     for team in ("CF", "CFB"):
         kicks = sum(p["kicks"] for p in summary["players"] if p["team"] == team)
         assert kicks > 0, f"{team} never reached the ball"
+    # Each team's coach chose its players' types before the referee's kick-off: what the server's
+    # game log shows them playing as, and what each adapter believes it is, is the coach's choice.
+    rcg = next((tmp_path / "match").glob("*.rcg")).read_text(errors="replace").splitlines()
+    types = [PlayerType.read(param_values(parse(line))) for line in rcg if line.startswith("(player_type ")]
+    assert len(types) == 18
+    wanted = choose_types(types, [1, 2, 3, 4, 5])
+    show = next(line for line in rcg if line.startswith("(show 10 "))
+    played = {(s, int(n)): int(t) for s, n, t in re.findall(r"\(\((l|r) (\d+)\) (\d+)", show)}
+    for p in summary["players"]:
+        assert played[(p["side"], p["number"])] == wanted[p["number"]] == p["player_type"], p
 
 
 def test_a_killed_adapter_is_relaunched_and_takes_its_player_over_mid_match(tmp_path):

@@ -180,6 +180,7 @@ def run(args: argparse.Namespace) -> dict:
         team_procs = []
         for i, (name, players) in enumerate(teams):
             argv = [team_exe, "--team", name, "--port", str(port), "--players", str(players), "--layout", args.layout]
+            argv += ["--no-coach"] if args.no_coach else []
             argv += ["--log-dir", str(out / f"logs-{name}"), "--stats-dir", str(out / "stats")]
             if i > 0:
                 argv += ["--no-commag"]  # one ComMAg serves both teams
@@ -210,7 +211,14 @@ def run(args: argparse.Namespace) -> dict:
         t0 = time.monotonic()
         for _ in range(30):  # let the decisions find their providers and move into formation
             trainer.poll()
-        trainer.send("(change_mode kick_off_l)")
+        if args.kick_off == "referee":
+            # The referee's kick-off (what a monitor's button sends) gives every player no coach has
+            # changed a type; coaches choose theirs before it (HELIOS base's once 10 cycles have stood still).
+            for _ in range(40):
+                trainer.poll()
+            trainer.send("(start)")
+        else:
+            trainer.send("(change_mode kick_off_l)")
         meter = CpuMeter(team_procs[0].pid)  # our team: its ComMAg, adapters, decisions, relaunches
         meter.start()
         sampled, start_cycle = time.monotonic(), trainer.time
@@ -310,6 +318,15 @@ def main() -> int:
         "'/path/to/helios-base/src/start.sh -t {team} -p {port}'",
     )
     ap.add_argument("--opponent-players", type=int, default=11, help="players the opponent brings")
+    ap.add_argument(
+        "--kick-off",
+        choices=("referee", "trainer"),
+        default="referee",
+        help="referee: the server's own kick-off, as in a competition (it hands out heterogeneous player types "
+        "to the players no coach has changed); trainer: the trainer sets the play mode (everyone keeps the "
+        "default type; how series were played before session 25)",
+    )
+    ap.add_argument("--no-coach", action="store_true", help="our team without its coach (rcss_team --no-coach)")
     args = ap.parse_args()
     if not args.server:
         ap.error("name the rcssserver binary with --server or RCSSSERVER")

@@ -194,9 +194,11 @@ def play(args: argparse.Namespace, n: int) -> dict:
     argv = [sys.executable, str(HERE / "rcss_match.py"), "--server", args.server, "--players", "11"]
     argv += ["--cycles", str(args.cycles), "--opponent", args.opponent, "--opponent-cmd", args.opponent_cmd]
     argv += ["--game-log", "--out", str(out), "--timeout", str(args.timeout), "--halves", "2"]
-    argv += ["--seed", str(args.seed + n), "--port", str(args.port)]
+    argv += ["--seed", str(args.seed + n), "--port", str(args.port), "--kick-off", args.kick_off]
     if args.realtime:
         argv.append("--realtime")
+    if args.no_coach:
+        argv.append("--no-coach")
     t0 = time.monotonic()
     done = subprocess.run(argv, capture_output=True, text=True, timeout=args.timeout + 300)
     try:
@@ -298,6 +300,13 @@ def main() -> int:
         help="the server's player port (the opponent's command gets it as {port}); a second series beside "
         "the first needs another port and its own ROS_DOMAIN_ID",
     )
+    ap.add_argument(
+        "--kick-off",
+        choices=("referee", "trainer"),
+        default="referee",
+        help="rcss_match --kick-off: referee (heterogeneous player types, as in a competition) or trainer",
+    )
+    ap.add_argument("--no-coach", action="store_true", help="our team without its coach")
     args = ap.parse_args()
     if args.again:
         return again(Path(args.again), args.team)

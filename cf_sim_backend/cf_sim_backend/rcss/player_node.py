@@ -316,6 +316,7 @@ class RcssPlayerNode(GuardedNode, Node):
             "time": b.time,
             "mode": b.mode,
             "kicks": b.counters.get("kick", 0),
+            "player_type": b.type_id,
             "score": [b.score[Side.LEFT], b.score[Side.RIGHT]],
             "server_errors": b.errors[-5:],
             "unexecuted_last": self.session.unexecuted,

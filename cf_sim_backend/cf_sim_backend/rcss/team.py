@@ -32,6 +32,7 @@ from cf_commag.given_parameters import node_name as safe_node_name
 from cf_commag.respawn import Respawner
 from cf_commag.transport.qos import SNAPSHOT_QOS
 from cf_interfaces.msg import Registry
+from cf_sim_backend.rcss import coach
 
 
 def executable(package: str, name: str) -> str:
@@ -46,6 +47,13 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     ap.add_argument("--players", type=int, default=11, help="how many players (1..11)")
     ap.add_argument("--commag", default="/commag", help="the ComMAg's node name")
     ap.add_argument("--no-commag", action="store_true", help="use a ComMAg that is already running")
+    ap.add_argument(
+        "--coach-port",
+        type=int,
+        default=None,
+        help="the server's online coach port (default: --port + 2, as rcssserver's own defaults)",
+    )
+    ap.add_argument("--no-coach", action="store_true", help="do not choose heterogeneous player types (rcss_coach)")
     ap.add_argument("--log-dir", default="", help="one log file per process (default: a new temp dir)")
     ap.add_argument("--stats-dir", default="", help="each adapter writes its counters here (JSON)")
     ap.add_argument(
@@ -136,6 +144,8 @@ class TeamProcesses:
             # One after another too: eleven Python processes starting at once starve the running adapters.
             self.start(f"{a.team}_{n}_decision", argv)
             self.wait_for(f"{a.team}_{n}_decision", f"{a.team}_{n}_decision", a.join_timeout)
+        if not a.no_coach:
+            self.choose_types()
         print(f"team {a.team}: {a.players} players and their decisions are up; logs in {self.logs}", flush=True)
         adapters = [p for name, p in self.procs.items() if name.endswith("_rcss_player")]
         while any(p.poll() is None for p in adapters):
@@ -151,6 +161,18 @@ class TeamProcesses:
         print(f"the match is over; adapters killed (relaunched by the ComMAg): {killed or 'none'}", flush=True)
         print(f"adapters that failed: {failed or 'none'}", flush=True)
         return 1 if failed else 0
+
+    def choose_types(self) -> None:
+        """Our online coach picks each player's type now, before the kick-off; a refusal is logged, not fatal."""
+        a = self.args
+        port = a.coach_port if a.coach_port is not None else a.port + 2
+        try:
+            chosen, answers = coach.run(a.team, a.host, port, a.players)
+        except (OSError, RuntimeError) as exc:
+            print(f"the coach could not choose player types: {exc}", flush=True)
+            return
+        said = ", ".join(f"{n}: {t} ({answers.get(n, 'no answer')})" for n, t in sorted(chosen.items()))
+        print(f"player types chosen by the coach: {said}", flush=True)
 
     def stop(self) -> None:
         if self.commag is not None:

@@ -1,0 +1,204 @@
+"""Our online coach on rcssserver: it picks each player's heterogeneous type before the kick-off (ROS-free core).
+
+    install/cf_sim_backend/lib/cf_sim_backend/rcss_coach --team CF --port 6002
+    (on a full ROS 2 install: ros2 run cf_sim_backend rcss_coach -- --team CF --port 6002)
+
+At the first kick-off the referee gives every player no coach has changed a type of its own, in
+shirt-number order (``Team::assignPlayerTypes``): with rcssserver 19's 18 random types, each
+allowed once, that left our number 5 at 0.75 m/cycle where the default type runs 1.0. So the
+coach, before the kick-off, keeps the default type for the goalkeeper and hands out the fastest
+of the other types (each once) in the order ``ORDER`` gives: the centre forward, the centre backs,
+the wide forwards, ... The players read their new type's parameters (kickable area, dash rate,
+decay, ...) from the server's ``(change_player_type N T)``, so their skills follow it. The coach
+then says ``(bye)``: in synch mode a connected coach must answer every cycle, and it has nothing
+more to say.
+"""
+
+from __future__ import annotations
+
+import argparse
+import socket
+import sys
+import time
+from dataclasses import dataclass
+
+from cf_sim_backend.rcss.protocol import parse
+
+ORDER = (10, 3, 4, 9, 11, 7, 2, 5, 6, 8)  # who gets the fastest type first: the spine, then the wings
+DEFAULT_TYPE = 0
+MAX_DASH_POWER = 100.0  # rcssserver 19's max_dash_power
+
+
+@dataclass(frozen=True)
+class PlayerType:
+    """What the coach weighs of one heterogeneous type."""
+
+    id: int
+    speed: float  # m/cycle: the top speed repeated full dashes reach (capped at player_speed_max)
+    stamina_inc: float  # stamina recovered per cycle
+
+    @classmethod
+    def read(cls, values: dict[str, float]) -> PlayerType:
+        """From a ``(player_type (id N) (name value) ...)`` message's values."""
+        accel = MAX_DASH_POWER * values["dash_power_rate"] * values["effort_max"]
+        top = accel / (1.0 - values["player_decay"])
+        return cls(int(values["id"]), min(values["player_speed_max"], top), values["stamina_inc_max"])
+
+
+def choose_types(types: list[PlayerType], players: list[int], goalie: int = 1, pt_max: int = 1) -> dict[int, int]:
+    """Shirt number -> type: the goalkeeper the default type, the others in ``ORDER`` (then by number)
+    the fastest left (of two as fast, the one that recovers more stamina), each type at most ``pt_max`` times.
+    """
+    left = {t.id: pt_max for t in types}
+    out: dict[int, int] = {}
+    if goalie in players and DEFAULT_TYPE in left:
+        out[goalie] = DEFAULT_TYPE
+        left[DEFAULT_TYPE] -= 1
+    ranked = sorted(types, key=lambda t: (-round(t.speed, 3), -t.stamina_inc, t.id))
+    order = [n for n in ORDER if n in players] + sorted(n for n in players if n not in ORDER and n != goalie)
+    for number in order:
+        pick = next((t for t in ranked if left[t.id] > 0), None)
+        if pick is None:
+            break
+        out[number] = pick.id
+        left[pick.id] -= 1
+    return out
+
+
+def param_values(msg: list) -> dict[str, float]:
+    """A parameter message's (name value) pairs whose value is a number."""
+    out = {}
+    for item in msg[1:]:
+        if isinstance(item, list) and len(item) == 2:
+            try:
+                out[str(item[0])] = float(item[1])
+            except (TypeError, ValueError):
+                continue
+    return out
+
+
+class CoachClient:
+    """The online coach's conversation with the server over UDP."""
+
+    def __init__(self, team: str, host: str = "127.0.0.1", port: int = 6002, timeout: float = 5.0):
+        self.team, self.timeout = team, timeout
+        self.addr = (socket.gethostbyname(host), port)
+        self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        self.sock.bind(("127.0.0.1" if self.addr[0].startswith("127.") else "", 0))
+        self.sock.settimeout(0.1)
+        self.types: dict[int, PlayerType] = {}
+        self.pt_max = 1
+        self.log: list[str] = []
+
+    def send(self, text: str) -> None:
+        self.sock.sendto(text.encode() + b"\0", self.addr)
+
+    def receive(self) -> list | None:
+        """One message (None: none came within 0.1 s); answers ``(think)`` with ``(done)``."""
+        try:
+            data, addr = self.sock.recvfrom(1 << 16)
+        except TimeoutError:
+            return None
+        self.addr = addr  # the server answers from the port it keeps for this client
+        try:
+            msg = parse(data)
+        except ValueError as exc:  # a message we cannot read (LanguageError, bad bytes) is logged, never fatal
+            self.log.append(f"unreadable: {exc}")
+            return None
+        kind = str(msg[0]) if msg else ""
+        if kind == "think":
+            self.send("(done)")
+        elif kind == "player_type":
+            values = param_values(msg)
+            if {"id", "dash_power_rate", "effort_max", "player_decay", "player_speed_max", "stamina_inc_max"} <= set(
+                values
+            ):
+                self.types[int(values["id"])] = PlayerType.read(values)
+        elif kind == "player_param":
+            self.pt_max = int(param_values(msg).get("pt_max", self.pt_max))
+        elif kind in ("error", "warning"):
+            self.log.append(" ".join(str(x) for x in msg))
+        return msg
+
+    def connect(self, version: int = 19) -> str:
+        """Join as the team's online coach; returns our side ("l" or "r")."""
+        deadline = time.monotonic() + self.timeout
+        while time.monotonic() < deadline:
+            self.send(f"(init {self.team} (version {version}))")
+            end = time.monotonic() + 0.5
+            while time.monotonic() < end:
+                msg = self.receive()
+                if msg and str(msg[0]) == "init" and len(msg) >= 3 and str(msg[2]) == "ok":
+                    return str(msg[1])
+                if msg and str(msg[0]) == "error":
+                    raise RuntimeError(f"the server refused the coach: {msg}")
+        raise RuntimeError(f"no answer from the server's coach port {self.addr[1]}")
+
+    def wait_for_types(self, count: int = 18) -> None:
+        """Read until the server has sent its player types (it does right after init)."""
+        deadline = time.monotonic() + self.timeout
+        while len(self.types) < count and time.monotonic() < deadline:
+            self.receive()
+        if not self.types:
+            raise RuntimeError("the server sent no player types")
+
+    def change_types(self, chosen: dict[int, int]) -> dict[int, str]:
+        """Ask for each change; returns shirt number -> the server's answer ("ok" or its warning)."""
+        answers: dict[int, str] = {}
+        for number, type_id in chosen.items():
+            self.send(f"(change_player_type {number} {type_id})")
+        deadline = time.monotonic() + self.timeout
+        while len(answers) < len(chosen) and time.monotonic() < deadline:
+            msg = self.receive()
+            if not msg:
+                continue
+            kind = str(msg[0])
+            if kind == "ok" and len(msg) >= 3 and str(msg[1]) == "change_player_type":
+                answers[int(msg[2])] = "ok"
+            elif kind in ("warning", "error"):
+                # The server does not say which request a warning answers: give it to the first unanswered.
+                pending = [n for n in chosen if n not in answers]
+                if pending:
+                    answers[pending[0]] = " ".join(str(x) for x in msg[1:])
+        return answers
+
+    def close(self) -> None:
+        try:
+            self.send("(bye)")
+        finally:
+            self.sock.close()
+
+
+def run(team: str, host: str, port: int, players: int, timeout: float = 5.0) -> tuple[dict[int, int], dict[int, str]]:
+    """Connect, choose the types, ask for them, leave; returns (chosen, answers)."""
+    client = CoachClient(team, host, port, timeout)
+    try:
+        client.connect()
+        client.wait_for_types()
+        chosen = choose_types(list(client.types.values()), list(range(1, players + 1)), pt_max=client.pt_max)
+        return chosen, client.change_types(chosen)
+    finally:
+        client.close()
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``rcss_coach``."""
+    ap = argparse.ArgumentParser(prog="rcss_coach", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--team", required=True, help="our team's name on the server")
+    ap.add_argument("--host", default="127.0.0.1")
+    ap.add_argument("--port", type=int, default=6002, help="the server's online coach port (olcoach_port)")
+    ap.add_argument("--players", type=int, default=11)
+    ap.add_argument("--timeout", type=float, default=5.0, help="seconds each step may take")
+    args = ap.parse_args(argv)
+    try:
+        chosen, answers = run(args.team, args.host, args.port, args.players, args.timeout)
+    except (OSError, RuntimeError) as exc:
+        print(f"rcss_coach: {exc}", file=sys.stderr)
+        return 1
+    for number, type_id in sorted(chosen.items()):
+        print(f"player {number}: type {type_id}: {answers.get(number, 'no answer')}", flush=True)
+    return 0 if all(answers.get(n) == "ok" for n in chosen) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,65 @@
+"""The coach's choice of heterogeneous player types (pure): the real server's types, read as it sends them."""
+
+from __future__ import annotations
+
+import pytest
+
+from cf_sim_backend.rcss.coach import ORDER, PlayerType, choose_types, param_values
+from cf_sim_backend.rcss.protocol import parse
+
+# Three of the types rcssserver 19 sent in a recorded match (shared rcss traces), as sent.
+TYPE_0 = (
+    "(player_type (id 0)(player_speed_max 1.05)(stamina_inc_max 45)(player_decay 0.4)(inertia_moment 5)"
+    "(dash_power_rate 0.006)(player_size 0.3)(kickable_margin 0.7)(kick_rand 0.1)(extra_stamina 50)"
+    "(effort_max 1)(effort_min 0.6)(kick_power_rate 0.027)(foul_detect_probability 0.5)"
+    "(catchable_area_l_stretch 1))"
+)
+TYPE_4 = (
+    "(player_type (id 4)(player_speed_max 1.05)(stamina_inc_max 51.6732)(player_decay 0.373568)"
+    "(inertia_moment 4.33921)(dash_power_rate 0.0048878)(player_size 0.3)(kickable_margin 0.679198)"
+    "(kick_rand 0.0791982)(extra_stamina 52.8109)(effort_max 0.988757)(effort_min 0.588757))"
+)
+TYPE_7 = (
+    "(player_type (id 7)(player_speed_max 1.05)(stamina_inc_max 46.0382)(player_decay 0.4656)"
+    "(inertia_moment 6.64)(dash_power_rate 0.00582696)(player_size 0.3)(kickable_margin 0.7017)"
+    "(kick_rand 0.1017)(extra_stamina 61.162)(effort_max 0.955352)(effort_min 0.555352))"
+)
+
+
+def read(text: str) -> PlayerType:
+    return PlayerType.read(param_values(parse(text)))
+
+
+def make(type_id: int, speed: float, stamina: float = 45.0) -> PlayerType:
+    return PlayerType(type_id, speed, stamina)
+
+
+def test_a_types_top_speed_is_what_full_dashes_reach():
+    assert read(TYPE_0).speed == pytest.approx(1.0)  # 100 * 0.006 * 1 / (1 - 0.4)
+    assert read(TYPE_4).speed == pytest.approx(0.7718, abs=1e-3)  # a slow type: 0.77 m/cycle
+    assert read(TYPE_7).speed == pytest.approx(1.0418, abs=1e-3)
+    fast = TYPE_7.replace("(dash_power_rate 0.00582696)", "(dash_power_rate 0.0070)")
+    assert read(fast).speed == pytest.approx(1.05)  # capped at player_speed_max
+
+
+def test_goalkeeper_keeps_the_default_type_and_the_spine_gets_the_fastest():
+    types = [make(0, 1.0), make(1, 0.84), make(2, 1.03), make(3, 0.90), make(4, 1.04), make(5, 0.75)]
+    chosen = choose_types(types, list(range(1, 12)))
+    assert chosen[1] == 0
+    assert chosen[ORDER[0]] == 4 and chosen[ORDER[1]] == 2 and chosen[ORDER[2]] == 3 and chosen[ORDER[3]] == 1
+    assert chosen[ORDER[4]] == 5  # the slowest go last
+    assert len(chosen) == 6, "each type once (pt_max 1): the other players keep what the referee gives them"
+    assert sorted(chosen.values()) == [0, 1, 2, 3, 4, 5]
+
+
+def test_of_two_as_fast_the_type_that_recovers_more_stamina_and_pt_max_is_honoured():
+    types = [make(0, 1.0), make(1, 0.95, 40.0), make(2, 0.95, 50.0)]
+    assert choose_types(types, [1, 10, 3])[10] == 2
+    twice = choose_types(types, [1, 10, 3, 4, 9], pt_max=2)
+    assert list(twice.values()).count(2) == 2 and twice[1] == 0 and twice[9] == 1
+
+
+def test_a_small_team_and_numbers_outside_the_order():
+    types = [make(t, 1.0 - t / 100) for t in range(18)]
+    assert choose_types(types, [1, 2]) == {1: 0, 2: 1}
+    assert choose_types(types, [2, 12], goalie=1) == {2: 0, 12: 1}  # no goalkeeper: the default type is free
