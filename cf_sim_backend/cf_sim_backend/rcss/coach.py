@@ -5,7 +5,7 @@
 
 At the first kick-off the referee gives every player no coach has changed a type of its own, in
 shirt-number order (``Team::assignPlayerTypes``): with rcssserver 19's 18 random types, each
-allowed once, that left our number 5 at 0.75 m/cycle where the default type runs 1.0. So the
+allowed once, that left our number 6 at 0.75 m/cycle where the default type runs 1.0. So the
 coach, before the kick-off, keeps the default type for the goalkeeper and hands out the fastest
 of the other types (each once) in the order ``ORDER`` gives: the centre forward, the centre backs,
 the wide forwards, ... The players read their new type's parameters (kickable area, dash rate,
