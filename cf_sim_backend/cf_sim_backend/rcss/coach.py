@@ -105,6 +105,9 @@ class CoachClient:
         except ValueError as exc:  # a message we cannot read (LanguageError, bad bytes) is logged, never fatal
             self.log.append(f"unreadable: {exc}")
             return None
+        if not isinstance(msg, list):
+            self.log.append(f"not a message: {msg!r}")
+            return None
         kind = str(msg[0]) if msg else ""
         if kind == "think":
             self.send("(done)")
