@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import socket
+import threading
+
 import pytest
 
-from cf_sim_backend.rcss.coach import ORDER, PlayerType, choose_types, param_values
+from cf_sim_backend.rcss.coach import ORDER, PlayerType, choose_types, param_values, run
 from cf_sim_backend.rcss.protocol import parse
 
 # Three of the types rcssserver 19 sent in a recorded match (shared rcss traces), as sent.
@@ -63,3 +66,46 @@ def test_a_small_team_and_numbers_outside_the_order():
     types = [make(t, 1.0 - t / 100) for t in range(18)]
     assert choose_types(types, [1, 2]) == {1: 0, 2: 1}
     assert choose_types(types, [2, 12], goalie=1) == {2: 0, 12: 1}  # no goalkeeper: the default type is free
+
+
+def test_the_coach_talks_to_a_server_over_udp_and_bad_datagrams_lose_nothing():
+    """The test plays the server's side of the online coach's conversation, in rcssserver's own words,
+    on a real UDP socket, with garbage in between; the real server is in test/test_rcss_server.py."""
+    server = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    server.bind(("127.0.0.1", 0))
+    server.settimeout(5.0)
+    heard: list[str] = []
+
+    def serve():
+        def say(text, to):
+            server.sendto(text.encode() + b"\0", to)
+
+        data, peer = server.recvfrom(4096)
+        heard.append(data.rstrip(b"\0").decode())
+        for junk in ("(((", "42", "(player_type (id x))", "\xff"):
+            say(junk, peer)
+        say("(init l ok)", peer)
+        say("(player_param (subs_max 3)(pt_max 1)(allow_mult_default_type 0))", peer)
+        for i in range(18):  # type i is faster the higher i is, but type 17's dash rate is bad
+            rate = "oops" if i == 17 else f"{0.0045 + 0.0001 * i:.4f}"
+            say(
+                TYPE_0.replace("(id 0)", f"(id {i})").replace("(dash_power_rate 0.006)", f"(dash_power_rate {rate})"),
+                peer,
+            )
+        while True:
+            data, peer = server.recvfrom(4096)
+            text = data.rstrip(b"\0").decode()
+            heard.append(text)
+            if text == "(bye)":
+                return
+            _, number, type_id = text.strip("()").split()
+            say(f"(ok change_player_type {number} {type_id})" if number != "3" else "(warning no_subs_left)", peer)
+
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    chosen, answers = run("CF", "127.0.0.1", server.getsockname()[1], players=3, timeout=3.0)
+    thread.join(5.0)
+    server.close()
+    assert heard[0] == "(init CF (version 19))" and heard[-1] == "(bye)"
+    assert chosen == {1: 0, 3: 16, 2: 15}  # 17 was unreadable; 3 (a centre back) before 2
+    assert answers == {1: "ok", 3: "no_subs_left", 2: "ok"}
