@@ -2,12 +2,16 @@
 
     python tools/rcss_match.py --server $RCSSSERVER [--players 11] [--opponents 0] [--cycles 300]
                                [--realtime] [--layout player|process] [--out DIR] [--no-isolate] [--game-log]
+                               [--kick-off referee|trainer] [--no-coach]
 
 It starts the server (synch mode unless --realtime; trainer with referee; logs off; its own
 config dir), our team with ``rcss_team`` (the ComMAg, the adapters, the decisions), optionally
 a second instance of our team as the opponent, and a trainer that kicks off once every player
 is up (the server would otherwise kick off on its own before our players have joined) and
-answers ``(done)`` in synch mode. At time over it collects each adapter's counters and prints
+answers ``(done)`` in synch mode. It kicks off with the referee's own ``(start)``, as a monitor's
+button does, so the server hands out heterogeneous player types as in a competition (our coach
+and the opponent's choose theirs before it; docs/rcssserver.md); ``--kick-off trainer`` sets the
+play mode instead, and every player no coach changed keeps the default type. At time over it collects each adapter's counters and prints
 one JSON summary on stdout.
 
 rcssserver always binds 0.0.0.0. Unless --no-isolate, the whole match runs in a private network

@@ -2,7 +2,7 @@
 
     python tools/rcss_series.py --server $RCSSSERVER --opponent PYRUS \\
         --opponent-cmd "bash -c 'cd /path/to/Pyrus2D && ./start.sh -t {team} -p {port}'" \\
-        [--matches 5] [--cycles 2000] [--realtime] [--seed 0] [--out DIR]
+        [--matches 5] [--cycles 2000] [--realtime] [--seed 0] [--out DIR] [--kick-off referee|trainer] [--no-coach]
 
 Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode unless
 --realtime; two halves; our 11 players against the opponent's, started with its own
