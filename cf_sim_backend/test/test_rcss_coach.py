@@ -70,10 +70,13 @@ def test_a_small_team_and_numbers_outside_the_order():
 
 def test_the_coach_talks_to_a_server_over_udp_and_bad_datagrams_lose_nothing():
     """The test plays the server's side of the online coach's conversation, in rcssserver's own words,
-    on a real UDP socket, with garbage in between; the real server is in test/test_rcss_server.py."""
+    on a real UDP socket, with garbage and a stranger's datagram in between; the real server is in
+    test/test_rcss_server.py."""
     server = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     server.bind(("127.0.0.1", 0))
     server.settimeout(5.0)
+    stranger = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    stranger.bind(("127.0.0.2", 0))
     heard: list[str] = []
 
     def serve():
@@ -82,10 +85,12 @@ def test_the_coach_talks_to_a_server_over_udp_and_bad_datagrams_lose_nothing():
 
         data, peer = server.recvfrom(4096)
         heard.append(data.rstrip(b"\0").decode())
+        stranger.sendto(b"(init r ok)\0", peer)  # another host on the network: not the server
         for junk in ("(((", "42", "(player_type (id x))", "\xff"):
             say(junk, peer)
         say("(init l ok)", peer)
         say("(player_param (subs_max 3)(pt_max 1)(allow_mult_default_type 0))", peer)
+        stranger.sendto(b"(player_param (pt_max 5))\0", peer)  # taken, the fastest type would go to all
         for i in range(18):  # type i is faster the higher i is, but type 17's dash rate is bad
             rate = "oops" if i == 17 else f"{0.0045 + 0.0001 * i:.4f}"
             say(
@@ -106,6 +111,7 @@ def test_the_coach_talks_to_a_server_over_udp_and_bad_datagrams_lose_nothing():
     chosen, answers = run("CF", "127.0.0.1", server.getsockname()[1], players=3, timeout=3.0)
     thread.join(5.0)
     server.close()
+    stranger.close()
     assert heard[0] == "(init CF (version 19))" and heard[-1] == "(bye)"
     assert chosen == {1: 0, 3: 16, 2: 15}  # 17 was unreadable; 3 (a centre back) before 2
     assert answers == {1: "ok", 3: "no_subs_left", 2: "ok"}

@@ -41,7 +41,7 @@ class PlayerType:
     def read(cls, values: dict[str, float]) -> PlayerType:
         """From a ``(player_type (id N) (name value) ...)`` message's values."""
         accel = MAX_DASH_POWER * values["dash_power_rate"] * values["effort_max"]
-        top = accel / (1.0 - values["player_decay"])
+        top = accel / max(1e-6, 1.0 - values["player_decay"])
         return cls(int(values["id"]), min(values["player_speed_max"], top), values["stamina_inc_max"])
 
 
@@ -88,6 +88,7 @@ class CoachClient:
         self.sock.settimeout(0.1)
         self.types: dict[int, PlayerType] = {}
         self.pt_max = 1
+        self.type_count = 18  # rcssserver 19's player_types, until its player_param says
         self.log: list[str] = []
 
     def send(self, text: str) -> None:
@@ -98,6 +99,9 @@ class CoachClient:
         try:
             data, addr = self.sock.recvfrom(1 << 16)
         except TimeoutError:
+            return None
+        if addr[0] != self.addr[0]:
+            self.log.append(f"dropped a datagram from {addr[0]}, not the server")
             return None
         self.addr = addr  # the server answers from the port it keeps for this client
         try:
@@ -118,7 +122,9 @@ class CoachClient:
             ):
                 self.types[int(values["id"])] = PlayerType.read(values)
         elif kind == "player_param":
-            self.pt_max = int(param_values(msg).get("pt_max", self.pt_max))
+            values = param_values(msg)
+            self.pt_max = int(values.get("pt_max", self.pt_max))
+            self.type_count = int(values.get("player_types", self.type_count))
         elif kind in ("error", "warning"):
             self.log.append(" ".join(str(x) for x in msg))
         return msg
@@ -137,10 +143,10 @@ class CoachClient:
                     raise RuntimeError(f"the server refused the coach: {msg}")
         raise RuntimeError(f"no answer from the server's coach port {self.addr[1]}")
 
-    def wait_for_types(self, count: int = 18) -> None:
+    def wait_for_types(self) -> None:
         """Read until the server has sent its player types (it does right after init)."""
         deadline = time.monotonic() + self.timeout
-        while len(self.types) < count and time.monotonic() < deadline:
+        while len(self.types) < self.type_count and time.monotonic() < deadline:
             self.receive()
         if not self.types:
             raise RuntimeError("the server sent no player types")
