@@ -36,7 +36,7 @@ import time
 from pathlib import Path
 
 from ament_index_python.packages import get_package_prefix
-from proctree import CpuMeter
+from proctree import CpuMeter, descendants
 
 
 def udp_port_open(port: int) -> bool:
@@ -107,18 +107,19 @@ class Trainer:
                 self.time = next((int(p) for p in parts if p.isdigit()), self.time)
 
 
-def kill_adapter(team: str, number: int) -> int | None:
-    """kill -9 the adapter of our player ``number`` (found by its stats file); returns its pid."""
-    for entry in Path("/proc").iterdir():
+def kill_adapter(team: str, number: int, root: int) -> int | None:
+    """kill -9 the adapter of our player ``number`` (found by its stats file) among the processes
+    below ``root`` (our team's), not another match's on the same machine; returns its pid."""
+    for pid in descendants(root):
         try:
-            argv = (entry / "cmdline").read_bytes().split(b"\0")
+            argv = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")
         except OSError:
             continue
         if any(a.endswith(b"rcss_player") for a in argv) and any(
             a.endswith(f"/{team}_{number}.json".encode()) for a in argv
         ):
-            os.kill(int(entry.name), signal.SIGKILL)
-            return int(entry.name)
+            os.kill(pid, signal.SIGKILL)
+            return pid
     return None
 
 
@@ -240,7 +241,11 @@ def run(args: argparse.Namespace) -> dict:
                 meter.sample()
                 sampled = time.monotonic()
             if kill and trainer.time >= kill[1] and "killed" not in summary:
-                summary["killed"] = {"number": kill[0], "cycle": trainer.time, "pid": kill_adapter(args.team, kill[0])}
+                summary["killed"] = {
+                    "number": kill[0],
+                    "cycle": trainer.time,
+                    "pid": kill_adapter(args.team, kill[0], team_procs[0].pid),
+                }
             if server.poll() is not None:
                 raise RuntimeError(f"rcssserver exited with {server.returncode}: see {out / 'server.log'}")
             if time.monotonic() > deadline:
