@@ -1,7 +1,7 @@
 """A series of matches of our team against a named opponent on rcssserver, and a table of how they went.
 
     python tools/rcss_series.py --server $RCSSSERVER --opponent PYRUS \\
-        --opponent-cmd "bash -c 'cd /path/to/Pyrus2D && ./start.sh -t {team} -p {port}'" \\
+        --opponent-cmd "bash -c 'cd /path/to/Pyrus2D && ./start.sh -t {team} --disable-file-log'" \\
         [--matches 5] [--cycles 2000] [--realtime] [--seed 0] [--out DIR] [--kick-off referee|trainer] [--no-coach]
 
 Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode unless
@@ -298,7 +298,7 @@ def main() -> int:
         type=int,
         default=6000,
         help="the server's player port (the opponent's command gets it as {port}); a second series beside "
-        "the first needs another port and its own ROS_DOMAIN_ID",
+        "the first needs its own ROS_DOMAIN_ID, not another port (each match has a network namespace of its own)",
     )
     ap.add_argument(
         "--kick-off",
