@@ -13,7 +13,7 @@ from rcss_picture import table as picture_table
 from rcss_reach_fit import kicks as reach_kicks
 from rcss_reach_fit import lead, set_off, set_off_table
 from rcss_reach_fit import table as reach_table
-from rcss_series import again, match_stats, read_rcg
+from rcss_series import again, match_stats, read_rcg, top_speeds
 from rcss_set_pieces import kind_of, set_pieces
 from rcss_set_pieces import table as set_piece_table
 
@@ -244,3 +244,25 @@ def test_a_receiver_sets_off_in_the_first_cycle_he_moves_towards_the_balls_path(
     assert lags["us"] == {3: 1} and not lags["them"]
     text = set_off_table(lags, "CF")
     assert "| CF | 1 | 0% | 0% | 100% |" in text and "| opponents | 0 | - |" in text
+
+
+def test_each_sides_top_speed_is_read_from_the_types_its_players_kick_off_with(tmp_path):
+    def player_type(i, rate):  # top speed: 100 * rate * 1.0 / (1 - 0.4)
+        return f"(player_type (id {i})(player_speed_max 1.05)(stamina_inc_max 45)(player_decay 0.4)" + (
+            f"(dash_power_rate {rate})(effort_max 1))"
+        )
+
+    def kick_off(t, types):
+        players = " ".join(f"(({s} {n}) {ty} 0x1 0 0 0 0 0 0 (v h 120))" for (s, n), ty in types.items())
+        return f"(show {t} ((b) 0 0 0 0) {players})"
+
+    before = {("l", 1): 0, ("l", 2): 0, ("l", 3): 0, ("r", 1): 0, ("r", 2): 0, ("r", 3): 0}
+    at_kick_off = {("l", 1): 0, ("l", 2): 1, ("l", 3): 2, ("r", 1): 3, ("r", 2): 0, ("r", 3): 3}
+    lines = ["ULG6", player_type(0, 0.006), player_type(1, 0.0057), player_type(2, 0.0051), player_type(3, "x")]
+    lines += ["(team 0 CF HELIOS 0 0)", kick_off(0, before), kick_off(1, at_kick_off)]
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    # Ours (left): 0.95 and 0.85, the goalkeeper left out; theirs: type 0 (1.0) and 3, unreadable, left out.
+    assert top_speeds(tmp_path / "m.rcg", "l") == [0.9, 1.0]
+    assert top_speeds(tmp_path / "m.rcg", "r") == [1.0, 0.9]
+    (tmp_path / "m.rcg").write_text("ULG6\n" + kick_off(1, at_kick_off) + "\n")
+    assert top_speeds(tmp_path / "m.rcg", "l") is None  # a log without types

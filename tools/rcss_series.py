@@ -14,7 +14,8 @@ ball, our kick its last, in their third : they in ours), tackles (hits of tries,
 at the ball (of the play-on cycles in which a field player of ours had the ball within 0.9 m, the
 share in which he neither kicked nor tackled it; "held": such cycles in which his own tackle of
 the last 10 cycles held him, as rcssserver's tackle_cycles does), offsides and faults (free kick, catch, back
-pass) called against each side, our CPU per cycle, relaunches, and the share of our body commands
+pass) called against each side, the mean top speed of each side's field players (their
+heterogeneous types, m/cycle at full dashes), our CPU per cycle, relaunches, and the share of our body commands
 the server executed; then the series' totals. The opponent is never part of this repository: build it
 beside it (see docs/rcssserver.md).
 
@@ -26,11 +27,15 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import subprocess
 import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from cf_sim_backend.rcss.coach import PlayerType, param_values
+from cf_sim_backend.rcss.protocol import parse
 
 HERE = Path(__file__).resolve().parent
 GOAL_X = 52.5
@@ -167,6 +172,7 @@ def match_stats(rcg: Path, our_side: str) -> dict:
         "possession": [possession[our_side] / total, possession[theirs] / total],
         "offsides": [calls.get(f"offside_{our_side}", 0), calls.get(f"offside_{theirs}", 0)],
         "faults": [sum(n for k, n in calls.items() if k.endswith(f"fault_{s}")) for s in (our_side, theirs)],
+        "speeds": top_speeds(rcg, our_side),
     }
 
 
@@ -187,6 +193,29 @@ def referee_calls(rcg: Path) -> dict[str, int]:
             mode = line.strip("()").split()[2]
             calls[mode] = calls.get(mode, 0) + 1
     return calls
+
+
+def top_speeds(rcg: Path, our_side: str) -> list[float] | None:
+    """The mean top speed (m/cycle) of each side's field players at the first kick-off, ours first,
+    from the game log's player types (None: the log has none)."""
+    types, kick_off = {}, None
+    for line in rcg.read_text(errors="replace").splitlines():
+        if line.startswith("(player_type "):
+            try:
+                values = param_values(parse(line))
+                types[int(values["id"])] = PlayerType.read(values).speed
+            except (ValueError, KeyError):
+                continue
+        elif line.startswith("(show ") and kick_off is None and int(line.split()[1]) > 0:
+            kick_off = line
+    if not types or kick_off is None:
+        return None
+    speeds: dict[str, list[float]] = {"l": [], "r": []}
+    for side, number, type_id in re.findall(r"\(\((l|r) (\d+)\) (\d+)", kick_off):
+        if number != "1" and int(type_id) in types:  # number 1: the goalkeeper
+            speeds[side].append(types[int(type_id)])
+    theirs = "r" if our_side == "l" else "l"
+    return [round(sum(v) / max(1, len(v)), 3) for v in (speeds[our_side], speeds[theirs])]
 
 
 def play(args: argparse.Namespace, n: int) -> dict:
@@ -230,8 +259,8 @@ def play(args: argparse.Namespace, n: int) -> dict:
 
 HEADER = (
     "| match | score | shots | possession | in the other's third | tackles hit/tried | idle at the ball | offsides |"
-    " faults | our CPU ms/cycle | relaunches | commands executed |\n"
-    "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    " faults | top speed | our CPU ms/cycle | relaunches | commands executed |\n"
+    "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 )
 
 
@@ -239,18 +268,20 @@ def row_line(r: dict) -> str:
     """One match's table row."""
     n = r["n"]
     if "error" in r:
-        return f"| {n} | failed: {r['error'][:300]} | | | | | | | | | | |"
+        return f"| {n} | failed: {r['error'][:300]} | | | | | | | | | | | |"
     shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
     off, faults = r.get("offsides", ["?", "?"]), r.get("faults", ["?", "?"])
     (our_hit, our_try), (their_hit, their_try) = r.get("tackles", [[0, 0], [0, 0]])
     idle, at_ball, held = ([*r.get("idle", [0, 0]), None])[:3]  # (series before the held count: none)
     ours, theirs = r.get("attacking", [0, 0])
     held_text = "" if held is None else f", {held} held"
+    speeds = r.get("speeds")
+    speed_text = f"{speeds[0]:.2f}:{speeds[1]:.2f}" if speeds else "?"
     return (
         f"| {n} | {r['score'][0]}:{r['score'][1]} | {shots[0]}:{shots[1]} | {poss[0]:.0%}:{poss[1]:.0%} |"
         f" {ours:.0%}:{theirs:.0%} |"
         f" {our_hit}/{our_try}:{their_hit}/{their_try} | {idle / max(1, at_ball):.0%} of {at_ball}{held_text} |"
-        f" {off[0]}:{off[1]} | {faults[0]}:{faults[1]} | {r['cpu_ms_per_cycle']} | {r['relaunched']} |"
+        f" {off[0]}:{off[1]} | {faults[0]}:{faults[1]} | {speed_text} | {r['cpu_ms_per_cycle']} | {r['relaunched']} |"
         f" {r['executed']:.1%} |"
     )
 
