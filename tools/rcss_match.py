@@ -11,8 +11,8 @@ is up (the server would otherwise kick off on its own before our players have jo
 answers ``(done)`` in synch mode. It kicks off with the referee's own ``(start)``, as a monitor's
 button does, so the server hands out heterogeneous player types as in a competition (our coach
 and the opponent's choose theirs before it; docs/rcssserver.md); ``--kick-off trainer`` sets the
-play mode instead, and every player no coach changed keeps the default type. At time over it collects each adapter's counters and prints
-one JSON summary on stdout.
+play mode instead, and every player no coach changed keeps the default type. At time over it
+collects each adapter's counters and prints one JSON summary on stdout.
 
 rcssserver always binds 0.0.0.0. Unless --no-isolate, the whole match runs in a private network
 namespace (``unshare -n``, loopback only), so nothing is reachable from outside and parallel runs
