@@ -10,15 +10,16 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-from cf_sim_backend.rcss.coach import PlayerType, choose_types, param_values
-from cf_sim_backend.rcss.protocol import parse
+from cf_sim_backend.rcss.coach import choose_types
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
+from rcss_series import kick_off_types
 
 SERVER = os.environ.get("RCSSSERVER", "")
 MATCH = Path(__file__).resolve().parents[1] / "tools" / "rcss_match.py"
@@ -58,12 +59,9 @@ def test_two_instances_of_our_team_play_each_other_each_with_its_coach(tmp_path)
         assert kicks > 0, f"{team} never reached the ball"
     # Each team's coach chose its players' types before the referee's kick-off: what the server's
     # game log shows them playing as, and what each adapter believes it is, is the coach's choice.
-    rcg = next((tmp_path / "match").glob("*.rcg")).read_text(errors="replace").splitlines()
-    types = [PlayerType.read(param_values(parse(line))) for line in rcg if line.startswith("(player_type ")]
+    types, played = kick_off_types(next((tmp_path / "match").glob("*.rcg")))
     assert len(types) == 18
-    wanted = choose_types(types, [1, 2, 3, 4, 5])
-    show = next(line for line in rcg if line.startswith("(show 10 "))
-    played = {(s, int(n)): int(t) for s, n, t in re.findall(r"\(\((l|r) (\d+)\) (\d+)", show)}
+    wanted = choose_types(list(types.values()), [1, 2, 3, 4, 5])
     for p in summary["players"]:
         assert played[(p["side"], p["number"])] == wanted[p["number"]] == p["player_type"], p
 

@@ -34,7 +34,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from cf_sim_backend.rcss.coach import PlayerType, param_values
+from cf_sim_backend.rcss.coach import PlayerType
 from cf_sim_backend.rcss.protocol import parse
 
 HERE = Path(__file__).resolve().parent
@@ -195,25 +195,34 @@ def referee_calls(rcg: Path) -> dict[str, int]:
     return calls
 
 
-def top_speeds(rcg: Path, our_side: str) -> list[float] | None:
-    """The mean top speed (m/cycle) of each side's field players at the first kick-off, ours first,
-    from the game log's player types (None: the log has none)."""
+def kick_off_types(rcg: Path) -> tuple[dict[int, PlayerType], dict[tuple[str, int], int]]:
+    """The game log's player types (those it can read), and the type each player ("l"/"r", number)
+    kicked off with (the first show after cycle 0)."""
     types, kick_off = {}, None
     for line in rcg.read_text(errors="replace").splitlines():
         if line.startswith("(player_type "):
             try:
-                values = param_values(parse(line))
-                types[int(values["id"])] = PlayerType.read(values).speed
-            except (ValueError, KeyError):
+                player_type = PlayerType.parse(parse(line))
+            except ValueError:
                 continue
+            if player_type is not None:
+                types[player_type.id] = player_type
         elif line.startswith("(show ") and kick_off is None and int(line.split()[1]) > 0:
             kick_off = line
-    if not types or kick_off is None:
+    played = {(s, int(n)): int(t) for s, n, t in re.findall(r"\(\((l|r) (\d+)\) (\d+)", kick_off or "")}
+    return types, played
+
+
+def top_speeds(rcg: Path, our_side: str) -> list[float] | None:
+    """The mean top speed (m/cycle) of each side's field players at the first kick-off, ours first,
+    from the game log's player types (None: the log has none)."""
+    types, played = kick_off_types(rcg)
+    if not types or not played:
         return None
     speeds: dict[str, list[float]] = {"l": [], "r": []}
-    for side, number, type_id in re.findall(r"\(\((l|r) (\d+)\) (\d+)", kick_off):
-        if number != "1" and int(type_id) in types:  # number 1: the goalkeeper
-            speeds[side].append(types[int(type_id)])
+    for (side, number), type_id in played.items():
+        if number != 1 and type_id in types:  # number 1: the goalkeeper
+            speeds[side].append(types[type_id].speed)
     theirs = "r" if our_side == "l" else "l"
     return [round(sum(v) / max(1, len(v)), 3) for v in (speeds[our_side], speeds[theirs])]
 

@@ -7,7 +7,7 @@ import threading
 
 import pytest
 
-from cf_sim_backend.rcss.coach import ORDER, PlayerType, choose_types, param_values, run
+from cf_sim_backend.rcss.coach import ORDER, PlayerType, choose_types, run
 from cf_sim_backend.rcss.protocol import parse
 
 # Three of the types rcssserver 19 sent in a recorded match (shared rcss traces), as sent.
@@ -30,7 +30,7 @@ TYPE_7 = (
 
 
 def read(text: str) -> PlayerType:
-    return PlayerType.read(param_values(parse(text)))
+    return PlayerType.parse(parse(text))
 
 
 def make(type_id: int, speed: float, stamina: float = 45.0) -> PlayerType:

@@ -27,6 +27,7 @@ from cf_sim_backend.rcss.protocol import parse
 ORDER = (10, 3, 4, 9, 11, 7, 2, 5, 6, 8)  # who gets the fastest type first: the spine, then the wings
 DEFAULT_TYPE = 0
 MAX_DASH_POWER = 100.0  # rcssserver 19's max_dash_power
+NEEDED = {"id", "dash_power_rate", "effort_max", "player_decay", "player_speed_max", "stamina_inc_max"}
 
 
 @dataclass(frozen=True)
@@ -38,8 +39,12 @@ class PlayerType:
     stamina_inc: float  # stamina recovered per cycle
 
     @classmethod
-    def read(cls, values: dict[str, float]) -> PlayerType:
-        """From a ``(player_type (id N) (name value) ...)`` message's values."""
+    def parse(cls, msg: list) -> PlayerType | None:
+        """From a parsed ``(player_type (id N) (name value) ...)`` message (None: a value it needs is
+        missing or not a number)."""
+        values = param_values(msg)
+        if not values.keys() >= NEEDED:
+            return None
         accel = MAX_DASH_POWER * values["dash_power_rate"] * values["effort_max"]
         top = accel / max(1e-6, 1.0 - values["player_decay"])
         return cls(int(values["id"]), min(values["player_speed_max"], top), values["stamina_inc_max"])
@@ -116,11 +121,9 @@ class CoachClient:
         if kind == "think":
             self.send("(done)")
         elif kind == "player_type":
-            values = param_values(msg)
-            if {"id", "dash_power_rate", "effort_max", "player_decay", "player_speed_max", "stamina_inc_max"} <= set(
-                values
-            ):
-                self.types[int(values["id"])] = PlayerType.read(values)
+            player_type = PlayerType.parse(msg)
+            if player_type is not None:
+                self.types[player_type.id] = player_type
         elif kind == "player_param":
             values = param_values(msg)
             self.pt_max = int(values.get("pt_max", self.pt_max))
