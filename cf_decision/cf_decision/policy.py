@@ -43,6 +43,7 @@ from cf_lang.ontology import PlayMode, WorldState
 from cf_lang.ontology import actions as act
 
 from .goalkeeper import goalkeeper
+from .reach import top_speed
 from .receive import Announced, meeting
 from .roles import Role, home_position, kick_off_position, role_of
 from .situation import (
@@ -111,7 +112,7 @@ def decide(
         return goalkeeper(state, me_pos, ball)
     if dist(me_pos, ball) <= KICKABLE and may_touch:
         return with_ball(state, number, me_pos)
-    my_eta = cycles_to_ball(me_pos, ball, state.ball.velocity)
+    my_eta = cycles_to_ball(me_pos, ball, state.ball.velocity, top_speed(state.me))
     if not may_touch:
         my_eta = NEVER  # the ball is someone else's until they have touched it
     contested = opponent_on_ball(state, ball)

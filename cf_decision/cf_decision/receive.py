@@ -81,12 +81,12 @@ def meeting(state: WorldState, number: int, passes: Sequence[Announced]) -> tupl
         return None
     rest = path[max(0, elapsed) :]
     react = reach.TURN_CYCLES if elapsed <= 0 else 0  # once it rolls: on my way already
-    mine = reach.cycles_to_path(me, rest, react=react)
+    mine = reach.cycles_to_path(me, rest, react=react, speed=reach.top_speed(state.me))
     if mine is None:
         return None
     if to is None:
-        mates = [(n, pos) for n, pos in sides(state)[0] if n != pass_.passer]
-        others = ((reach.cycles_to_path(pos, rest, react=react), n) for n, pos in mates)
+        mates = [(n, runner) for n, runner in sides(state)[0] if n != pass_.passer]
+        others = ((reach.cycles_to_path(r.pos, rest, react=react, speed=r.speed), n) for n, r in mates)
         if any(c is not None and (c, n) < (mine, number) for c, n in others):
             return None
     return rest[mine - 1], mine

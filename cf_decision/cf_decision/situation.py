@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 from cf_lang.ontology import FIELD, AbsolutePositioning, PlayMode, Team, WorldState
 
+from .reach import Runner, top_speed
+
 FIELD_HALF_LENGTH = FIELD.half_length
 GOAL = (FIELD_HALF_LENGTH, 0.0)
 OWN_GOAL = (-FIELD_HALF_LENGTH, 0.0)
@@ -44,17 +46,17 @@ def point(x: float, y: float) -> AbsolutePositioning:
     return AbsolutePositioning(x=max(-60.0, min(60.0, x)), y=max(-40.0, min(40.0, y)))
 
 
-def sides(state: WorldState) -> tuple[list[tuple[int, tuple[float, float]]], list[tuple[tuple[float, float], bool]]]:
-    """Team-mates (number, position) other than me, and opponents (position, goalkeeper)."""
+def sides(state: WorldState) -> tuple[list[tuple[int, Runner]], list[Runner]]:
+    """Team-mates (number, as a runner) other than me, and opponents (as runners)."""
     mates, opponents = [], []
     me = state.me.player_number if state.me else None
     for p in state.players:
         if p.positioning is None:
             continue
         if p.which_team is Team.OUR and p.player_number not in (None, me):
-            mates.append((p.player_number, xy(p.positioning)))
+            mates.append((p.player_number, Runner(xy(p.positioning), False, top_speed(p))))
         elif p.which_team is Team.OPP:
-            opponents.append((xy(p.positioning), bool(p.is_goalie)))
+            opponents.append(Runner(xy(p.positioning), bool(p.is_goalie), top_speed(p)))
     return mates, opponents
 
 

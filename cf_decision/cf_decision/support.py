@@ -22,15 +22,20 @@ STAY = 2.0  # m
 OFFSETS = [(dx, dy) for dx in (SUPPORT_STEP, 0.0, -SUPPORT_STEP) for dy in (0.0, SUPPORT_STEP, -SUPPORT_STEP)]
 
 
-def pass_room(ball: tuple[float, float], spot: tuple[float, float], opponents) -> int:
-    """How many cycles before any opponent a pass to my feet at ``spot`` reaches me (capped at
-    ROOM_CAP; negative: an opponent is first; -HORIZON: no pass there).
+def pass_room(
+    ball: tuple[float, float],
+    spot: tuple[float, float],
+    opponents: list[reach.Runner],
+    speed: float = reach.PLAYER_SPEED,
+) -> int:
+    """How many cycles before any opponent a pass to my feet at ``spot`` reaches me, running up to
+    ``speed`` (capped at ROOM_CAP; negative: an opponent is first; -HORIZON: no pass there).
     """
     d = dist(ball, spot)
     if not 4.0 <= d <= 40.0:
         return -reach.HORIZON
     path = reach.kicked_path(ball, spot, reach.pass_speed(d))
-    mine = reach.first_cycles(path, [(spot, False)])
+    mine = reach.first_cycles(path, [reach.Runner(spot, False, speed)])
     if mine is None:
         return -reach.HORIZON
     theirs = reach.first_cycles(path[: mine + ROOM_CAP], opponents)  # later than that: room enough
@@ -43,14 +48,14 @@ def open_spot(
     """The spot near ``base`` (the formation's) a pass reaches safely, the furthest up the field
     (not beyond ``max_x``: onside), of equals the nearest to ``base``; ``base`` when none is safe.
     """
-    opponents = sides(state)[1]
+    opponents, speed = sides(state)[1], reach.top_speed(state.me)
     best, best_key = base, None
     for dx, dy in OFFSETS:
         spot = (
             max(-FIELD_HALF_LENGTH + 2.0, min(max_x, FIELD_HALF_LENGTH - 2.0, base[0] + dx)),
             max(-FIELD.width / 2 + 2.0, min(FIELD.width / 2 - 2.0, base[1] + dy)),
         )
-        if pass_room(ball, spot, opponents) < SAFE_MARGIN:
+        if pass_room(ball, spot, opponents, speed) < SAFE_MARGIN:
             continue
         key = (spot[0] + (STAY_BONUS if dist(me, spot) < STAY else 0.0), -dist(spot, base))
         if best_key is None or key > best_key:

@@ -110,7 +110,7 @@ def shot_margin(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[flo
     through, and the block is hard to foresee, the keeper's reach less so.
     """
     _, opponents = sides(state)
-    keepers = [o for o in opponents if o[1]]
+    keepers = [o for o in opponents if o.goalie]
     best, best_key, best_margin = (FIELD_HALF_LENGTH + 1.0, 0.0), (-1, 0, 0.0), -reach.HORIZON
     half_goal = FIELD.goal_width / 2 - 0.8
     for y in (-half_goal, -half_goal / 2, 0.0, half_goal / 2, half_goal):
@@ -123,7 +123,7 @@ def shot_margin(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[flo
             reach.HORIZON if stopped is None else stopped - arrive
             for stopped in (reach.first_cycles(path[:arrive], group) for group in (opponents, keepers))
         )
-        away = min((dist(target, pos) for pos, _ in keepers), default=0.0)  # ties: further from him
+        away = min((dist(target, k.pos) for k in keepers), default=0.0)  # ties: further from him
         key = (max(margin, 0), keeper, away)
         if key > best_key:
             best, best_key, best_margin = target, key, margin
@@ -145,7 +145,9 @@ def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1
     """
     mates, opponents = sides(state)
     best, best_score = None, -1e9
-    for number, here in mates:
+    ours_all = [runner for _, runner in mates]
+    for number, runner in mates:
+        here = runner.pos
         leads = (0.0, 5.0, 10.0) if here[0] > ball[0] - 5.0 else (0.0,)
         for lead in leads:
             target = (min(FIELD_HALF_LENGTH - 3.0, here[0] + lead), here[1])
@@ -153,7 +155,7 @@ def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1
             if not 4.0 <= d <= 40.0:
                 continue
             path = reach.kicked_path(ball, target, reach.pass_speed(d))
-            ours = reach.first_cycles(path, [(pos, False) for n, pos in mates])
+            ours = reach.first_cycles(path, ours_all)
             if ours is None:
                 continue
             theirs = reach.first_cycles(path, opponents)
@@ -179,7 +181,7 @@ def space_ahead(
 ) -> bool:
     """No opponent within ``near``, nor within ``ahead`` and ``cone`` degrees of the way towards ``towards``."""
     heading = math.atan2(towards[1] - me[1], towards[0] - me[0])
-    for pos, _ in sides(state)[1]:
+    for pos, _, _ in sides(state)[1]:
         d = dist(me, pos)
         off = abs(math.remainder(math.atan2(pos[1] - me[1], pos[0] - me[0]) - heading, math.tau))
         if d < near or (d < ahead and off < math.radians(cone)):
@@ -208,7 +210,7 @@ def free_ways(state: WorldState, me: tuple[float, float]) -> list[Way]:
     LANE_ANGLE degrees of the way. In our own third only straight ahead: beating a man there risks
     a goal.
     """
-    opponents = [pos for pos, _ in sides(state)[1]]
+    opponents = [o.pos for o in sides(state)[1]]
     toward = math.atan2(GOAL[1] - me[1], GOAL[0] - me[0])
     ways = []
     for off in (0.0,) if me[0] < -FIELD_HALF_LENGTH / 3 else (0.0, 30.0, -30.0, 60.0, -60.0):
@@ -296,7 +298,7 @@ def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[
     A ball that crosses the touch line first is lost where it crosses (their throw-in).
     """
     mates, opponents = sides(state)
-    ours_all = [(pos, False) for _, pos in mates]
+    ours_all = [runner for _, runner in mates]
     ways = []
     for degrees in CLEAR_ANGLES:
         heading = math.radians(degrees)

@@ -20,17 +20,21 @@ MARK_BALL_X = 15.0  # mark while their ball is short of this x (deeper in their 
 BLOCK_DISTANCE = 3.0  # m from an opponent's ball towards our goal: where the covering player waits for it
 
 
-def cycles_to_ball(me: tuple[float, float], ball: tuple[float, float], velocity=None) -> int:
-    """Cycles until I can have the ball, rolling as it does (``velocity``: the ontology's, metres per second)."""
+def cycles_to_ball(
+    me: tuple[float, float], ball: tuple[float, float], velocity=None, speed: float = reach.PLAYER_SPEED
+) -> int:
+    """Cycles until I, running up to ``speed`` (m/cycle), can have the ball, rolling as it does
+    (``velocity``: the ontology's, metres per second)."""
     v = (velocity.vx / reach.CYCLES_PER_SECOND, velocity.vy / reach.CYCLES_PER_SECOND) if velocity else (0.0, 0.0)
-    return reach.cycles_to_ball(me, ball, v)
+    return reach.cycles_to_ball(me, ball, v, speed)
 
 
 def state_eta(state: WorldState) -> int | None:
     """My cycles to the ball in ``state`` (None: I or the ball are not known)."""
     if not (state.ball and state.ball.positioning and state.me and state.me.positioning):
         return None
-    return cycles_to_ball(xy(state.me.positioning), xy(state.ball.positioning), state.ball.velocity)
+    me, ball = xy(state.me.positioning), xy(state.ball.positioning)
+    return cycles_to_ball(me, ball, state.ball.velocity, reach.top_speed(state.me))
 
 
 def choose_interceptor(my_number: int, my_eta: int, claims: dict[int, int]) -> bool:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from cf_decision.policy import decide
-from cf_decision.reach import ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
+from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
 from cf_decision.roles import Role, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line
@@ -87,6 +87,18 @@ def test_pass_forward_to_a_team_mate_who_gets_there_first():
     assert d.method == "pass" and (d.action.to or d.action.target) is not None
     choice = best_pass(state((0.0, 0.0), players=players), (0.5, 0.0))
     assert choice.number == 10 and choice.gain > 10.0
+
+
+def test_a_pass_is_judged_with_the_receivers_top_speed_and_an_unknown_one_as_the_defaults():
+    marker = opp(4, 18.0, 12.0)
+    told = mate(10, 15.0, 10.0).model_copy(update={"top_speed": 10.0})
+    slow = mate(10, 15.0, 10.0).model_copy(update={"top_speed": 8.0})  # 0.8 m/cycle
+    choice = best_pass(state((0.0, 0.0), players=[mate(10, 15.0, 10.0), marker]), (0.5, 0.0))
+    assert choice.number == 10 and choice.target == (25.0, 10.0)  # a ball ahead of him
+    assert best_pass(state((0.0, 0.0), players=[told, marker]), (0.5, 0.0)) == choice
+    assert best_pass(state((0.0, 0.0), players=[slow, marker]), (0.5, 0.0)) is None  # the marker is first
+    path = kicked_path((0.0, 0.0), (25.0, 10.0), pass_speed(27.0))
+    assert first_cycles(path, [Runner((15.0, 10.0), speed=0.8)]) > first_cycles(path, [Runner((15.0, 10.0))])
 
 
 def test_no_pass_an_opponent_reaches_first():
@@ -370,8 +382,8 @@ def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it
 
     def first(aim, players):
         path = kicked_path(ball, aim, CLEAR_SPEED)
-        ours = first_cycles(path, [(where(p), False) for p in players if p.which_team is Team.OUR])
-        theirs = first_cycles(path, [(where(p), False) for p in players if p.which_team is Team.OPP])
+        ours = first_cycles(path, [Runner(where(p)) for p in players if p.which_team is Team.OUR])
+        theirs = first_cycles(path, [Runner(where(p)) for p in players if p.which_team is Team.OPP])
         return ours, theirs, path
 
     with_mate = [*pressers, mate(2, -22.0, -20.0)]
@@ -408,9 +420,9 @@ def test_while_a_team_mate_has_the_ball_a_midfielder_stands_where_a_pass_reaches
     target = (d.action.target.x, d.action.target.y)
     assert target == (spot[0] + 4.0, spot[1])  # of the safe spots, the furthest up, then the nearest
     path = kicked_path(ball, target, pass_speed(dist_of(ball, target)))
-    mine = first_cycles(path, [(target, False)])
+    mine = first_cycles(path, [Runner(target)])
     assert (
-        mine is not None and (first_cycles(path, [((lane.positioning.x, lane.positioning.y), False)]) or 99) >= mine + 2
+        mine is not None and (first_cycles(path, [Runner((lane.positioning.x, lane.positioning.y))]) or 99) >= mine + 2
     )
     # The same, but the lane is clear: the furthest-up safe spot, never offside.
     players = [carrier, opp(1, 50.0, 0.0, goalie=True), opp(2, 9.0, 20.0), opp(3, 10.0, -20.0)]

@@ -61,6 +61,7 @@ def test_paper_exec_and_both_player_key_spellings():
         ("(exec Player kick :playerNumber 1 :whichTeam their :power 20 :direction 0)", "Player.kick.whichTeam", "our"),
         ("(exec Player pass :playerNumber 1 :whichTeam our)", "Player.pass", "exactly one of"),
         ("(WorldState :time 3 :ball (Ball :velocity (Velocity :vx a :vy 0)))", "WorldState.ball.velocity.vx", "number"),
+        ("(Player :playerNumber 4 :whichTeam our :topSpeed 0)", "Player.topSpeed", "greater than 0"),
         ("hello", "", "expected (Class ...)"),
     ],
 )
@@ -87,10 +88,11 @@ def test_world_state_round_trip():
         players=(
             Player(player_number=1, which_team=Team.OUR, is_goalie=True),
             Player(player_number=9, which_team=Team.OPP, stamina=0.5),
+            Player(player_number=7, which_team=Team.OUR, top_speed=9.42),
         ),
     )
     text = unparse(state)
-    assert "(sequence (Player" in text and ":isGoalie true" in text
+    assert "(sequence (Player" in text and ":isGoalie true" in text and ":topSpeed 9.42" in text
     assert parse_expr(text) == state
 
 

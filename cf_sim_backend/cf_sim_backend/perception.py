@@ -70,6 +70,9 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
         ox, oy = to_own_frame(side, nx, ny)
         return _clip(ox, 70.0), _clip(oy, 50.0), sigma
 
+    # Every player here is of one type; as on rcssserver, a player is told his own and his
+    # team-mates' top speed, not the opponents'.
+    speed = round(world.params.top_speed * 10, 3)  # m/cycle -> m/s
     sx, sy = to_own_frame(side, me.x + rng.gauss(0, SELF_SIGMA), me.y + rng.gauss(0, SELF_SIGMA))
     vx, vy = to_own_frame(side, me.vx * 10, me.vy * 10)  # m/cycle -> m/s
     myself = Player(
@@ -87,6 +90,7 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
         velocity=Velocity(vx=_clip(vx, 50.0), vy=_clip(vy, 50.0)),
         head_angle=math.radians(me.neck),
         stamina=round(me.stamina / world.params.stamina_max, 3),
+        top_speed=speed,
     )
 
     ball = None
@@ -112,17 +116,19 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
         if not visible:
             continue
         px, py, sigma = noisy(p.x, p.y, d)
+        known = d <= NUMBER_FAR
         others.append(
             Player(
-                player_number=p.number if d <= NUMBER_FAR else None,
+                player_number=p.number if known else None,
                 which_team=(Team.OUR if p.side is side else Team.OPP) if d <= TEAM_FAR else None,
-                is_goalie=p.goalie if d <= NUMBER_FAR else None,
+                is_goalie=p.goalie if known else None,
                 positioning=AbsolutePositioning(
                     x=px, y=py, yaw=yaw_in_own_frame(side, p.body), sigma_x=sigma, sigma_y=sigma
                 ),
                 relative=RelativePositioning(
                     distance=min(200.0, d), direction=math.radians(norm_deg(rel + me.neck)), sigma_distance=sigma
                 ),
+                top_speed=speed if known and p.side is side else None,
                 age=0,
             )
         )

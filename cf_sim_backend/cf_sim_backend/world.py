@@ -13,6 +13,18 @@ from enum import StrEnum
 
 from cf_lang.ontology import FIELD
 
+MAX_DASH_POWER = 100.0  # rcssserver 19's max_dash_power
+
+
+def top_speed(player_speed_max: float, dash_power_rate: float, player_decay: float, effort_max: float = 1.0) -> float:
+    """Metres per cycle that repeated full dashes reach (rcssserver's ``real_speed_max`` of a player type).
+
+    Each dash adds ``MAX_DASH_POWER * dash_power_rate * effort_max``, each cycle keeps ``player_decay``
+    of the speed: the speed levels off where the two balance, unless the cap is lower.
+    """
+    accel = MAX_DASH_POWER * dash_power_rate * effort_max
+    return min(player_speed_max, accel / max(1e-6, 1.0 - player_decay))
+
 
 class Side(StrEnum):
     LEFT = "l"
@@ -47,6 +59,7 @@ class Params:
     player_speed_max: float = 1.05
     player_rand: float = 0.1
     dash_power_rate: float = 0.006
+    effort_max: float = 1.0  # the share of a dash's power a rested player gets
     side_dash_rate: float = 0.4  # a dash at 90 degrees off the body accelerates this share (rcssserver 14+)
     back_dash_rate: float = 0.7  # and one straight back this share
     kick_power_rate: float = 0.027
@@ -67,6 +80,11 @@ class Params:
     goal_pause_cycles: int = 20
     auto_kick_off_cycles: int = 50
     set_piece_timeout: int = 100
+
+    @property
+    def top_speed(self) -> float:
+        """Metres per cycle that repeated full dashes reach (1.0 for rcssserver's default type)."""
+        return top_speed(self.player_speed_max, self.dash_power_rate, self.player_decay, self.effort_max)
 
     @property
     def kickable_distance(self) -> float:

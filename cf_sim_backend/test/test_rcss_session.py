@@ -194,6 +194,32 @@ def test_players_are_tracked_by_team_and_number_with_ages_then_forgotten():
     assert not b.players  # forgotten
 
 
+def test_the_top_speeds_of_me_and_my_team_mates_follow_their_types_and_the_opponents_stay_unknown():
+    """The server tells a team-mate's new type and an opponent's change only (rcssserver 19's texts)."""
+    b = _belief(number=7)
+    b.update(
+        parse("(player_type (id 0)(player_speed_max 1.05)(player_decay 0.4)(dash_power_rate 0.006)(effort_max 1))")
+    )
+    b.update(
+        parse(
+            "(player_type (id 4)(player_speed_max 1.05)(player_decay 0.373568)(dash_power_rate 0.0048878)"
+            "(effort_max 0.988757))"
+        )
+    )
+    b.update(parse("(player_type (id 9)(player_speed_max 1.05)(player_decay 0.5)(dash_power_rate 0.006))"))
+    for msg in ("(change_player_type 7 4)", "(change_player_type 3 9)", "(change_player_type 5)"):
+        b.update(parse(msg))
+    b.update(parse("(sense_body 10 (view_mode high normal) (stamina 8000 1 130600) (speed 0 0) (head_angle 0))"))
+    b.update(parse(f'(see 10 {SEE_CENTRE} ((p "CF" 3) 5 0 0 0 90 0) ((p "CF" 8) 6 20) ((p "Opp" 5) 20 0))'))
+    state = world_state(b)
+    speeds = {(p.which_team, p.player_number): p.top_speed for p in state.players}
+    assert state.me.top_speed == pytest.approx(7.715, abs=0.001)  # 0.489 m/cycle a dash, 37% of it lost a cycle
+    assert speeds[(Team.OUR, 3)] == pytest.approx(10.5)  # 1.2 m/cycle at full dashes, capped at 1.05
+    assert speeds[(Team.OUR, 8)] == pytest.approx(10.0)  # never changed: the default type
+    assert speeds[(Team.OPP, 5)] is None  # changed, but to what nobody says
+    assert b.type_id == 4 and b.params().top_speed == pytest.approx(0.7715, abs=0.0001)
+
+
 def test_a_player_seen_without_a_number_is_the_known_player_nearest_him():
     """Outside the view cone a close player is just (P): he is who we last saw near there."""
     b = _belief()

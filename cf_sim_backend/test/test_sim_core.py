@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import random
+from dataclasses import replace
 
 import pytest
 
@@ -254,6 +255,15 @@ def test_perception_view_cone_noise_and_own_frame():
     far = next(p for p in noisy.players if p.player_number == 3)
     assert far.positioning.sigma_x == pytest.approx(0.05 * 10.0)
     assert unparse(state).startswith("(WorldState :time")
+
+
+def test_a_player_is_told_his_own_and_his_team_mates_top_speed_not_the_opponents():
+    sim = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0), (Side.LEFT, 6, 10.0, 0.0, 0.0), (Side.RIGHT, 4, 12.0, 3.0, 180.0))
+    state = observe(sim.world, Side.LEFT, 2, random.Random(0), noise=0.0)
+    assert state.me.top_speed == pytest.approx(10.0)  # rcssserver's default type: 1.0 m/cycle
+    assert {(p.which_team, p.top_speed) for p in state.players} == {(Team.OUR, 10.0), (Team.OPP, None)}
+    faster = replace(sim.world.params, player_decay=0.45)  # 0.6 m/cycle a dash: 1.09, capped at 1.05
+    assert faster.top_speed == pytest.approx(1.05) and Params(effort_max=0.8).top_speed == pytest.approx(0.8)
 
 
 def test_far_players_lose_their_number():

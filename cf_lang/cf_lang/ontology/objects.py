@@ -109,6 +109,7 @@ class Player(Concept):
     velocity: Velocity | None = None
     head_angle: float | None = Field(default=None, ge=-math.pi, le=math.pi, description="relative to body")
     stamina: float | None = Field(default=None, ge=0.0, le=1.0, description="fraction of the maximum")
+    top_speed: float | None = Field(default=None, gt=0.0, le=50.0, description="m/s that full dashes reach")
     age: int | None = Field(default=None, ge=0, description="cycles since last seen")
 
 

@@ -36,7 +36,7 @@ from cf_lang.ontology import (
 from cf_sim_backend.perception import relative_mode, to_own_frame, yaw_in_own_frame
 from cf_sim_backend.rcss.localise import localise
 from cf_sim_backend.rcss.protocol import read_see
-from cf_sim_backend.world import Params, Side, SimBall, SimPlayer, World, norm_deg
+from cf_sim_backend.world import Params, Side, SimBall, SimPlayer, World, norm_deg, top_speed
 
 PLAYER_MEMORY = 30  # cycles a player not seen again is still reported
 BALL_MEMORY = 100  # cycles the ball's estimate is still reported
@@ -148,6 +148,7 @@ class Belief:
     server: dict[str, float | str] = field(default_factory=dict)
     player_types: dict[int, dict[str, float | str]] = field(default_factory=dict)
     type_id: int = 0
+    mate_types: dict[int, int] = field(default_factory=dict)  # team-mates' types other than the default
     me: OwnPlayer = field(default_factory=OwnPlayer)
     ball: Track | None = None
     players: dict[tuple[str, int], Track] = field(default_factory=dict)  # (team name, number)
@@ -194,8 +195,12 @@ class Belief:
             self.player_types[int(values["id"])] = values
 
     def _on_change_player_type(self, msg: list) -> None:  # (change_player_type UNUM [TYPE])
-        if len(msg) >= 3 and int(msg[1]) == self.number:
-            self.type_id = int(msg[2])
+        # The server tells a team-mate's new type, an opponent's only that it changed; at the
+        # (re)connection it tells every type other than the default again.
+        if len(msg) >= 3:
+            self.mate_types[int(msg[1])] = int(msg[2])
+            if int(msg[1]) == self.number:
+                self.type_id = int(msg[2])
 
     def note_error(self, text: str) -> None:
         """Keep the latest 20 errors (the server's, or messages that did not parse)."""
@@ -464,6 +469,15 @@ class Belief:
         """A parameter of this player's type, else of the server."""
         return self.player_types.get(self.type_id, {}).get(name, self.server.get(name, default))
 
+    def top_speed(self, type_id: int) -> float:
+        """Metres per cycle that full dashes of player type ``type_id`` reach."""
+        values = self.player_types.get(type_id, {})
+
+        def value(name: str) -> float:
+            return float(values.get(name, self.server.get(name, getattr(Params, name))))
+
+        return top_speed(*(value(n) for n in ("player_speed_max", "dash_power_rate", "player_decay", "effort_max")))
+
     def params(self) -> Params:
         """The server's and this player type's parameters, as the shared skills read them."""
         names = [f for f in Params.__dataclass_fields__ if f not in ("half_cycles", "halves")]
@@ -581,6 +595,7 @@ def world_state(belief: Belief) -> WorldState:
         velocity=velocity(me.vx, me.vy),
         head_angle=math.radians(-me.neck),
         stamina=round(min(1.0, me.stamina / float(belief.server.get("stamina_max", 8000.0))), 3),
+        top_speed=round(belief.top_speed(belief.type_id) * 10, 3),  # m/cycle -> m/s
         age=max(0, t - me.localised) if me.localised >= 0 else None,
     )
     ball = None
@@ -597,6 +612,9 @@ def world_state(belief: Belief) -> WorldState:
     tracks += [(team, None, tr) for team, tr in belief.anonymous]
     for team, number, tr in tracks:
         which = None if team is None else (Team.OUR if team == belief.team else Team.OPP)
+        speed = None  # (an opponent's type is not told)
+        if which is Team.OUR and number is not None:
+            speed = round(belief.top_speed(belief.mate_types.get(number, 0)) * 10, 3)
         others.append(
             Player(
                 player_number=number,
@@ -604,6 +622,7 @@ def world_state(belief: Belief) -> WorldState:
                 is_goalie=tr.goalie if number is not None else None,
                 positioning=place(tr.x, tr.y, tr.sigma, tr.body),
                 relative=relative(tr.x, tr.y, tr.sigma),
+                top_speed=speed,
                 age=max(0, t - tr.seen),
             )
         )

@@ -23,10 +23,10 @@ import time
 from dataclasses import dataclass
 
 from cf_sim_backend.rcss.protocol import parse
+from cf_sim_backend.world import top_speed
 
 ORDER = (10, 3, 4, 9, 11, 7, 2, 5, 6, 8)  # who gets the fastest type first: the spine, then the wings
 DEFAULT_TYPE = 0
-MAX_DASH_POWER = 100.0  # rcssserver 19's max_dash_power
 NEEDED = {"id", "dash_power_rate", "effort_max", "player_decay", "player_speed_max", "stamina_inc_max"}
 
 
@@ -45,9 +45,10 @@ class PlayerType:
         values = param_values(msg)
         if not values.keys() >= NEEDED:
             return None
-        accel = MAX_DASH_POWER * values["dash_power_rate"] * values["effort_max"]
-        top = accel / max(1e-6, 1.0 - values["player_decay"])
-        return cls(int(values["id"]), min(values["player_speed_max"], top), values["stamina_inc_max"])
+        speed = top_speed(
+            values["player_speed_max"], values["dash_power_rate"], values["player_decay"], values["effort_max"]
+        )
+        return cls(int(values["id"]), speed, values["stamina_inc_max"])
 
 
 def choose_types(types: list[PlayerType], players: list[int], goalie: int = 1, pt_max: int = 1) -> dict[int, int]:
