@@ -64,6 +64,9 @@ def test_two_instances_of_our_team_play_each_other_each_with_its_coach(tmp_path)
     wanted = choose_types(list(types.values()), [1, 2, 3, 4, 5])
     for p in summary["players"]:
         assert played[(p["side"], p["number"])] == wanted[p["number"]] == p["player_type"], p
+        # ... and the top speed its WorldState tells is that type's; it knows its team-mates' types.
+        assert p["top_speed"] == pytest.approx(types[wanted[p["number"]]].speed * 10, abs=0.001), p
+        assert {n: p["mate_types"].get(str(n), 0) for n in wanted} == wanted, p
 
 
 def test_a_killed_adapter_is_relaunched_and_takes_its_player_over_mid_match(tmp_path):
