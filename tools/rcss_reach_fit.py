@@ -86,8 +86,8 @@ def kicks(match: Path, team: str = "CF") -> list[Kick]:
 def lead(kick: Kick, react: int) -> int:
     """The model's lead of our first team-mate over their first man on the kick's true path."""
     path = reach.ball_path(kick.ball, kick.velocity)
-    ours = reach.first_cycles(path, [(pos, False) for pos in kick.mates], react)
-    theirs = reach.first_cycles(path, list(kick.opponents))
+    ours = reach.first_cycles(path, [reach.Runner(pos) for pos in kick.mates], react)
+    theirs = reach.first_cycles(path, [reach.Runner(pos, goalie) for pos, goalie in kick.opponents])
     return (HORIZON if theirs is None else theirs) - (HORIZON if ours is None else ours)
 
 
