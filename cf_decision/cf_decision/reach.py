@@ -85,10 +85,11 @@ def cycles_to_ball(me: Point, ball: Point, velocity: Point = (0.0, 0.0), speed: 
     """How soon I, running up to ``speed``, can have the ball, rolling as it does (velocity in metres per cycle)."""
     if math.hypot(me[0] - ball[0], me[1] - ball[1]) <= REACH:
         return 0
-    n = cycles_to_path(me, ball_path(ball, velocity), speed=speed)
+    path = ball_path(ball, velocity)
+    n = cycles_to_path(me, path, speed=speed)
     if n is not None:
         return n
-    stop = ball_path(ball, velocity)[-1]  # it stops about there
+    stop = path[-1]  # it stops about there
     return HORIZON + int(math.hypot(me[0] - stop[0], me[1] - stop[1]) / speed)
 
 

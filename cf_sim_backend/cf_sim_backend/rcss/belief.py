@@ -147,8 +147,7 @@ class Belief:
     half: int = 1
     server: dict[str, float | str] = field(default_factory=dict)
     player_types: dict[int, dict[str, float | str]] = field(default_factory=dict)
-    type_id: int = 0
-    mate_types: dict[int, int] = field(default_factory=dict)  # team-mates' types other than the default
+    mate_types: dict[int, int] = field(default_factory=dict)  # shirt number -> type, as told (mine too)
     me: OwnPlayer = field(default_factory=OwnPlayer)
     ball: Track | None = None
     players: dict[tuple[str, int], Track] = field(default_factory=dict)  # (team name, number)
@@ -199,8 +198,6 @@ class Belief:
         # (re)connection it tells every type other than the default again.
         if len(msg) >= 3:
             self.mate_types[int(msg[1])] = int(msg[2])
-            if int(msg[1]) == self.number:
-                self.type_id = int(msg[2])
 
     def note_error(self, text: str) -> None:
         """Keep the latest 20 errors (the server's, or messages that did not parse)."""
@@ -465,18 +462,22 @@ class Belief:
 
     # ---- what others read -----------------------------------------------------
 
-    def param(self, name: str, default: float) -> float | str:
-        """A parameter of this player's type, else of the server."""
-        return self.player_types.get(self.type_id, {}).get(name, self.server.get(name, default))
+    @property
+    def type_id(self) -> int:
+        """My player type: the one the server last told for my number, else the default (0)."""
+        return self.mate_types.get(self.number, 0)
 
-    def top_speed(self, type_id: int) -> float:
-        """Metres per cycle that full dashes of player type ``type_id`` reach."""
-        values = self.player_types.get(type_id, {})
+    def param(self, name: str, default: float, type_id: int | None = None) -> float | str:
+        """A parameter of player type ``type_id`` (default: mine), else of the server."""
+        type_id = self.type_id if type_id is None else type_id
+        return self.player_types.get(type_id, {}).get(name, self.server.get(name, default))
 
-        def value(name: str) -> float:
-            return float(values.get(name, self.server.get(name, getattr(Params, name))))
-
-        return top_speed(*(value(n) for n in ("player_speed_max", "dash_power_rate", "player_decay", "effort_max")))
+    def told_top_speed(self, number: int) -> float:
+        """Metres per second that full dashes of team-mate ``number``'s type reach (mine for my
+        number), as the WorldState tells it."""
+        type_id = self.mate_types.get(number, 0)
+        names = ("player_speed_max", "dash_power_rate", "player_decay", "effort_max")
+        return round(top_speed(*(float(self.param(n, getattr(Params, n), type_id)) for n in names)) * 10, 3)
 
     def params(self) -> Params:
         """The server's and this player type's parameters, as the shared skills read them."""
@@ -595,7 +596,7 @@ def world_state(belief: Belief) -> WorldState:
         velocity=velocity(me.vx, me.vy),
         head_angle=math.radians(-me.neck),
         stamina=round(min(1.0, me.stamina / float(belief.server.get("stamina_max", 8000.0))), 3),
-        top_speed=round(belief.top_speed(belief.type_id) * 10, 3),  # m/cycle -> m/s
+        top_speed=belief.told_top_speed(belief.number),
         age=max(0, t - me.localised) if me.localised >= 0 else None,
     )
     ball = None
@@ -614,7 +615,7 @@ def world_state(belief: Belief) -> WorldState:
         which = None if team is None else (Team.OUR if team == belief.team else Team.OPP)
         speed = None  # (an opponent's type is not told)
         if which is Team.OUR and number is not None:
-            speed = round(belief.top_speed(belief.mate_types.get(number, 0)) * 10, 3)
+            speed = belief.told_top_speed(number)
         others.append(
             Player(
                 player_number=number,

@@ -317,7 +317,7 @@ class RcssPlayerNode(GuardedNode, Node):
             "mode": b.mode,
             "kicks": b.counters.get("kick", 0),
             "player_type": b.type_id,
-            "top_speed": round(b.top_speed(b.type_id) * 10, 3),  # m/s, as the WorldState tells it
+            "top_speed": b.told_top_speed(b.number),  # m/s, as the WorldState tells it
             "mate_types": b.mate_types,
             "score": [b.score[Side.LEFT], b.score[Side.RIGHT]],
             "server_errors": b.errors[-5:],
