@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from cf_commag.client import Agent
-from cf_commag.gateway_client import GatewayClient, GatewayError
+from cf_commag.gateway_client import GatewayClient
 from cf_lang.acl import Performative
 from cf_lang.sexp import Keyword, SexpError, Symbol, dumps, loads, quote
 from cf_system import start_commag, start_component, start_gateway
@@ -128,16 +128,10 @@ def test_a_hung_ros_agent_stalls_nobody_and_loses_nothing(framework, procs, prob
     probe.wait_kind(hung, "registered")
     line = '(inform :receiver (set (agent-identifier :name {})) :content "x" :reply-with r{})\n'
     with GatewayClient("127.0.0.1", framework, name=f"flood_{tag}", timeout=60) as flood:
-        deadline = time.monotonic() + 30
-        while True:  # until the gateway's registry cache knows it and its answer comes back
-            flood.send_line(line.format(hung, 0).strip())
-            try:
-                assert flood.receive().performative is Performative.NOT_UNDERSTOOD
-                break
-            except GatewayError as exc:
-                if "unknown receiver" not in str(exc) or time.monotonic() > deadline:
-                    raise
-                time.sleep(0.1)
+        # A lookup names it: the gateway relays to it even before its registry snapshot shows it.
+        assert [p["name"] for p in flood.lookup("Hearing")] == [hung]
+        flood.send_line(line.format(hung, 0).strip())
+        assert flood.receive().performative is Performative.NOT_UNDERSTOOD
         os.kill(proc.pid, signal.SIGSTOP)
         try:
             # One DDS sample per message (a ping after each, so that no two are read in one
@@ -178,6 +172,25 @@ def test_cpp_agent(framework, procs, probe, tag, cpp):
     reply = run_foreign_agent(procs, probe, tag, argv, "cpp", name)
     assert reply.content.startswith("(done-by-cpp exec ")  # it read the request's content as an expression
     probe.wait_kind(name, "deregistered")  # (bye) deregisters
+
+
+def test_cpp_request_ends_on_the_gateways_failure_and_at_its_reply_by(framework, procs, probe, tag, cpp):
+    """A C++ request to a name nobody registered ends with the gateway's failure instead of
+    waiting for ever; one that nobody answers ends at its timeout, which the receiver reads
+    as the request's :reply-by on the wall clock."""
+    mute = f"mute_{tag}"
+    with GatewayClient("127.0.0.1", framework, name=mute, timeout=60) as gw:
+        gw.register("Hearing", lease=30)
+        argv = [str(cpp / "cf_request_check"), "127.0.0.1", str(framework), f"rc_{tag}", mute]
+        proc = procs.start(argv, "request_check")
+        request = gw.receive()  # taken, never answered
+        received = time.time()
+        assert proc.wait(timeout=60) == 0, procs.log("request_check")
+    log = procs.log("request_check")
+    assert "UNKNOWN failure: unknown receiver nobody_registered_this" in log, log
+    assert f"TIMEOUT no answer from {mute} within 1 s" in log, log
+    assert request.performative is Performative.REQUEST and request.reply_by is not None
+    assert received - 10 < request.reply_by < received + 10  # wall-clock seconds, not a monotonic clock
 
 
 def _form(value) -> str:

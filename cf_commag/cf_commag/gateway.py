@@ -29,6 +29,8 @@ from .registry import Result
 from .transport.samples import pack_lines
 
 PROTOCOL_VERSION = 1
+LOOKUP_TRUST = 10.0  # s a lookup answer's names count as known, whatever the registry snapshot says
+LOOKUP_MEMORY = 10_000  # names remembered from lookup answers before the stale ones are forgotten
 _K_SENDER = Keyword("sender")
 _DIRECTIONS = {d.name.lower(): d for d in Direction}
 _PERFORMATIVES = {p.value for p in acl.Performative}
@@ -281,6 +283,7 @@ class TcpAgent:
         except (LanguageError, ValueError) as exc:
             self.send(form("failure", in_reply_to="lookup", reason=str(exc)))
             return True
+        self.gateway.looked_up(e.record.name for e in entries)
         self.send(dumps([Symbol("providers"), *[entry_form(e) for e in entries]]))
         return True
 
@@ -347,7 +350,7 @@ class TcpAgent:
         if not receivers:
             self.send(form("failure", in_reply_to=perf, reason="no :receiver"))
             return
-        known = self.gateway.bus.known
+        known = self.gateway.known
         unknown = [r for r in receivers if not known(r)]
         if unknown:
             self.send(form("failure", in_reply_to=perf, reason=f"unknown receiver {', '.join(unknown)}"))
@@ -393,6 +396,29 @@ class Gateway:
         self._open: set[_Connection] = set()
         self._outgoing: dict[str, list[str]] = {}
         self._flush_due = False
+        self._looked_up: dict[str, float] = {}  # name -> when a lookup answer named it (monotonic)
+
+    def known(self, name: str) -> bool:
+        """Whether ``name`` is an agent one may send to: in the ComMAg's last registry snapshot,
+        or named by one of its lookup answers within LOOKUP_TRUST seconds.
+
+        Snapshots reach the gateway a moment after the ComMAg answers, so an agent that
+        registered just now may be missing from the last one; an agent that a lookup has
+        just named must be reachable all the same (a C++ agent's request to the provider
+        it had looked up was refused as to an unknown receiver, and it waited for ever).
+        """
+        if self.bus.known(name):
+            return True
+        seen = self._looked_up.get(name)
+        return seen is not None and time.monotonic() - seen <= LOOKUP_TRUST
+
+    def looked_up(self, names) -> None:
+        """Note the names a lookup answer gave (see :meth:`known`)."""
+        now = time.monotonic()
+        if len(self._looked_up) > LOOKUP_MEMORY:  # forget the stale ones, so that lookups cannot grow it
+            self._looked_up = {n: t for n, t in self._looked_up.items() if now - t <= LOOKUP_TRUST}
+        for name in names:
+            self._looked_up[name] = now
 
     async def start(self) -> int:
         """Listen; return the bound port (useful with port 0)."""

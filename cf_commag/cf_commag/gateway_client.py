@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import itertools
 import socket
+import time
 from collections import deque
 
 from cf_lang import acl, dumps, loads
@@ -30,8 +31,10 @@ class GatewayError(Exception):
 class GatewayClient:
     def __init__(self, host: str, port: int, *, name: str, token: str = "", timeout: float = 10.0):
         self.name = name
+        self.timeout = timeout
         self.sock = socket.create_connection((host, port), timeout=timeout)
-        self.file = self.sock.makefile("rwb")
+        self.file = self.sock.makefile("wb")
+        self._buffer = bytearray()
         self.inbox: deque[AclMessage] = deque()
         self.events: deque[dict] = deque()
         self._ids = itertools.count(1)
@@ -50,10 +53,29 @@ class GatewayClient:
         self.file.write(line.encode("utf-8") + b"\n")
         self.file.flush()
 
-    def read(self) -> list:
-        line = self.file.readline()
-        if not line:
-            raise ConnectionError("the gateway closed the connection")
+    def read(self, deadline: float | None = None) -> list:
+        """The next line, read; TimeoutError if none is complete by ``deadline`` (monotonic).
+
+        Lines are split here rather than by a socket file: a file cannot be read
+        again once a read of it timed out, and a request's deadline must not end
+        the connection.
+        """
+        while (end := self._buffer.find(b"\n")) < 0:
+            if deadline is not None:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    raise TimeoutError("no line from the gateway in time")
+                self.sock.settimeout(left)
+            try:
+                chunk = self.sock.recv(65536)
+            finally:
+                if deadline is not None:
+                    self.sock.settimeout(self.timeout)
+            if not chunk:
+                raise ConnectionError("the gateway closed the connection")
+            self._buffer += chunk
+        line = bytes(self._buffer[:end])
+        del self._buffer[: end + 1]
         return loads(line)
 
     def _next(self, expect: str) -> dict:
@@ -97,12 +119,15 @@ class GatewayClient:
     def send(self, msg: AclMessage) -> None:
         self.send_line(acl.to_text(msg))
 
-    def receive(self) -> AclMessage:
-        """The next ACL message for this agent."""
+    def receive(self, deadline: float | None = None) -> AclMessage:
+        """The next ACL message for this agent (TimeoutError if none by ``deadline``, monotonic).
+
+        The gateway's own failure or not-understood (about a message sent) raises GatewayError.
+        """
         if self.inbox:
             return self.inbox.popleft()
         while True:
-            sexp = self.read()
+            sexp = self.read(deadline)
             head = str(sexp[0]).lower()
             params = _pairs(sexp[1:])
             if head in _PERFORMATIVES and "sender" in params:
@@ -110,10 +135,17 @@ class GatewayClient:
             if head in ("failure", "not-understood", "error"):
                 raise GatewayError(f"{head}: {params.get('reason')}")
 
-    def request(self, receiver: str, content: str, *, protocol: str = "fipa-request") -> AclMessage:
-        """Run a request or query to its final answer (agree is skipped); return that answer."""
+    def request(
+        self, receiver: str, content: str, *, protocol: str = "fipa-request", timeout: float = 30.0
+    ) -> AclMessage:
+        """Run a request or query to its final answer (agree is skipped); return that answer.
+
+        The message carries ``:reply-by`` now + ``timeout`` (wall clock); with no answer by
+        then, TimeoutError. Other messages that arrive meanwhile are kept in ``inbox``.
+        """
         cid = f"{self.name}-c{next(self._ids)}"
         perf = Performative.QUERY_REF if protocol == "fipa-query" else Performative.REQUEST
+        deadline = time.monotonic() + timeout  # our own wait; the wire carries the wall clock
         self.send(
             AclMessage(
                 perf,
@@ -122,15 +154,23 @@ class GatewayClient:
                 protocol=protocol,
                 conversation_id=cid,
                 reply_with=f"{cid}-r1",
+                reply_by=time.time() + timeout,
             )
         )
-        while True:
-            msg = self.receive()
-            if msg.conversation_id != cid:
-                self.inbox.append(msg)
-                continue
-            if msg.performative is not Performative.AGREE:
-                return msg
+        others: list[AclMessage] = []
+        try:
+            while True:
+                try:
+                    msg = self.receive(deadline)
+                except TimeoutError:
+                    raise TimeoutError(f"no answer from {receiver} within {timeout} s") from None
+                if msg.conversation_id != cid:
+                    others.append(msg)
+                    continue
+                if msg.performative is not Performative.AGREE:
+                    return msg
+        finally:
+            self.inbox.extend(others)
 
     def close(self) -> None:
         with contextlib.suppress(OSError, GatewayError, ValueError):

@@ -27,6 +27,7 @@ class FakeBus:
         self.published = []
         self.watchers = {}
         self.before_deregister = None  # a test's hook: what happens while the ComMAg answers
+        self.unseen = set()
 
     async def register(self, record) -> Result:
         return self.registry.register(record, now=time.monotonic())[0]
@@ -40,6 +41,8 @@ class FakeBus:
         return self.registry.lookup(query)
 
     def known(self, name):
+        if name in self.unseen:  # registered, but not yet in the snapshot the gateway has
+            return False
         return name in self.registry.directory or name in self.inboxes
 
     def publish(self, receiver, text):
@@ -176,6 +179,36 @@ def test_bad_input_is_answered_and_the_connection_stays(server, line, answer):
         assert answer in got[1], got[1]
         assert got[2] == "(pong)"
         sock.close()
+
+
+def test_an_agent_a_lookup_named_is_reachable_before_the_snapshot_shows_it(server):
+    """The registry snapshot reaches the gateway a moment after the ComMAg answers: an agent
+    that registered just now is missing from it, but once a lookup has named it, messages to
+    it go through. A name no lookup gave is still refused while the snapshot lacks it."""
+    with server.client("alice") as alice, server.client("bob") as bob, server.client("carol") as carol:
+        alice.register("Kick", team="blue")
+        carol.register("Hearing", team="blue")
+        server.bus.unseen |= {"alice", "carol"}  # registered, not yet in the gateway's snapshot
+        line = '(inform :receiver (set (agent-identifier :name {})) :content "(Game :time 1)")'
+        bob.send_line(line.format("carol"))
+        with pytest.raises(GatewayError, match="unknown receiver carol"):
+            bob.receive()
+        assert [p["name"] for p in bob.lookup("Kick", team="blue")] == ["alice"]
+        bob.send_line(line.format("alice"))
+        assert alice.receive().content == "(Game :time 1)"
+
+
+def test_a_request_nobody_answers_ends_at_its_reply_by_and_the_connection_goes_on(server):
+    with server.client("alice") as alice, server.client("bob") as bob:
+        alice.register("Kick", team="blue")
+        with pytest.raises(TimeoutError, match=r"no answer from alice within 0\.3 s"):
+            bob.request("alice", "(exec Player kick :playerNumber 9 :whichTeam our :power 10)", timeout=0.3)
+        asked = alice.receive()
+        assert asked.performative is Performative.REQUEST
+        assert time.time() - 10 < asked.reply_by < time.time() + 10  # the wall clock, not a monotonic one
+        bob.ping()  # the timed-out wait left the connection usable
+        alice.send(AclMessage(Performative.INFORM, receivers=(AgentId("bob"),), content="(late)", conversation_id="x"))
+        assert bob.receive().content == "(late)"
 
 
 def test_commands_before_hello_and_bad_names(server):

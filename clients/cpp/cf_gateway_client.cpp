@@ -2,13 +2,16 @@
 #include "cf_gateway_client.hpp"
 
 #include <netdb.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <sys/types.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <sstream>
 
 namespace cf {
@@ -309,7 +312,7 @@ void Gateway::send_line(const std::string& line) {
     }
 }
 
-Value Gateway::read_message() {
+Value Gateway::read_message(Deadline deadline) {
     while (true) {
         std::size_t end = buffer_.find('\n');
         if (end != std::string::npos) {
@@ -318,6 +321,13 @@ Value Gateway::read_message() {
             if (!line.empty() && line.back() == '\r') line.pop_back();
             if (line.empty()) continue;
             return read(line);
+        }
+        if (deadline != Deadline::max()) {
+            auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+            pollfd ready{fd_, POLLIN, 0};
+            int got = left.count() > 0 ? ::poll(&ready, 1, static_cast<int>(left.count())) : 0;
+            if (got < 0 && errno == EINTR) continue;
+            if (got == 0) throw GatewayError("nothing from the gateway in time");
         }
         char chunk[65536];
         ssize_t n = ::recv(fd_, chunk, sizeof chunk, 0);
@@ -364,26 +374,57 @@ std::vector<std::string> Gateway::lookup(const std::string& service_class, const
     return names;
 }
 
-Value Gateway::receive() {
+Value Gateway::receive() { return receive(Deadline::max()); }
+
+Value Gateway::receive(Deadline deadline) {
     if (!inbox_.empty()) {
         Value v = std::move(inbox_.front());
         inbox_.pop_front();
         return v;
     }
     while (true) {
-        Value msg = read_message();
-        if (param(msg, "sender") != nullptr) return msg;  // what the gateway says itself is not ACL
+        Value msg = read_message(deadline);
+        if (param(msg, "sender") != nullptr) return msg;
+        // What the gateway says itself is not ACL; but a failure may be about a message we
+        // sent (an unknown receiver, say), and whoever waits for its answer must hear it.
+        std::string head = msg.head();
+        if (head == "failure" || head == "not-understood" || head == "error")
+            throw GatewayError(head + ": " + text_of(param(msg, "reason")));
     }
 }
 
-Value Gateway::request(const std::string& receiver, const std::string& content) {
+// A FIPA date-time in UTC, to the millisecond: 20261125T101010123Z.
+static std::string fipa_time(std::chrono::system_clock::time_point when) {
+    auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(when.time_since_epoch()).count();
+    std::time_t seconds = static_cast<std::time_t>(ms / 1000);
+    std::tm utc{};
+    gmtime_r(&seconds, &utc);
+    char text[32];
+    std::size_t n = std::strftime(text, sizeof text, "%Y%m%dT%H%M%S", &utc);
+    std::snprintf(text + n, sizeof text - n, "%03dZ", static_cast<int>(ms % 1000));
+    return text;
+}
+
+Value Gateway::request(const std::string& receiver, const std::string& content, double timeout) {
     std::string cid = name + "-c" + std::to_string(++conversations_);
+    auto span = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::duration<double>(timeout));
+    // The wire carries the wall clock (the receiver's clock); our own wait is monotonic.
+    Deadline deadline = std::chrono::steady_clock::now() + span;
     send_line("(request :receiver (set (agent-identifier :name " + receiver + ")) :content " + quote(content) +
               " :language cf-lang :ontology robocup-soccer :protocol fipa-request :conversation-id " + cid +
-              " :reply-with " + cid + "-r1)");
+              " :reply-with " + cid + "-r1 :reply-by " + fipa_time(std::chrono::system_clock::now() + span) + ")");
     std::deque<Value> others;
     while (true) {
-        Value msg = receive();
+        Value msg;
+        try {
+            msg = receive(deadline);
+        } catch (const GatewayError&) {
+            for (auto it = others.rbegin(); it != others.rend(); ++it) inbox_.push_front(std::move(*it));
+            if (std::chrono::steady_clock::now() < deadline) throw;
+            std::ostringstream why;
+            why << "no answer from " << receiver << " within " << timeout << " s";
+            throw GatewayError(why.str());
+        }
         if (text_of(param(msg, "conversation-id")) != cid) {
             others.push_back(std::move(msg));
             continue;

@@ -10,6 +10,7 @@
 // folder and link cf_gateway_client). example.cpp is a complete agent.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -90,17 +91,23 @@ public:
                        double lease = 2.0);
     // Providers' names, best first.
     std::vector<std::string> lookup(const std::string& service_class, const std::string& team = "");
-    // The next ACL message addressed to us (blocks).
+    // The next ACL message addressed to us (blocks). A failure the gateway answers itself (to a
+    // message we sent: an unknown receiver, say) throws GatewayError.
     Value receive();
     // A fipa-request to its final answer (inform, failure, refuse, ...); an agree is skipped.
-    Value request(const std::string& receiver, const std::string& content);
+    // The request carries :reply-by now + timeout (wall clock); with no answer by then,
+    // GatewayError. Messages of other conversations that arrive meanwhile are kept.
+    Value request(const std::string& receiver, const std::string& content, double timeout = 30.0);
     // Answers a message of a conversation someone opened with us (agree, inform, failure, ...).
     void reply(const Value& to, const std::string& performative, const std::string& content = "");
     // Says bye (the gateway deregisters us) and closes.
     void close();
 
 private:
-    Value read_message();
+    using Deadline = std::chrono::steady_clock::time_point;
+    // The next line read as a value; GatewayError if none arrives by `deadline`.
+    Value read_message(Deadline deadline = Deadline::max());
+    Value receive(Deadline deadline);
     int fd_ = -1;
     std::string buffer_;
     std::deque<Value> inbox_;

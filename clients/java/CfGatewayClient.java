@@ -155,21 +155,51 @@ public class CfGatewayClient {
             while (true) {
                 Object msg = readLine();
                 if (Sexp.param(msg, "sender") != null) return msg;
+                // The gateway's own failure may be about a message we sent (an unknown receiver):
+                // whoever waits for its answer must hear it.
+                String h = head(msg);
+                if (h.equals("failure") || h.equals("not-understood") || h.equals("error"))
+                    throw new IOException(h + ": " + Sexp.text(Sexp.param(msg, "reason")));
             }
         }
 
-        /** A fipa-request to its final answer (an agree is skipped). */
+        /** A fipa-request to its final answer (an agree is skipped); IOException with none in 30 s. */
         public Object request(String receiver, String content) throws IOException {
+            return request(receiver, content, 30.0);
+        }
+
+        /**
+         * A fipa-request to its final answer (an agree is skipped). The request carries
+         * :reply-by now + timeout (wall clock); with no answer by then, IOException.
+         */
+        public Object request(String receiver, String content, double timeout) throws IOException {
             String cid = name + "-c" + (++conversations);
+            long span = Math.max(1, Math.round(timeout * 1000));
+            String replyBy = FIPA_TIME.format(java.time.Instant.now().plusMillis(span));
             send("(request :receiver (set (agent-identifier :name " + receiver + ")) :content " + Sexp.quote(content)
                     + " :language cf-lang :ontology robocup-soccer :protocol fipa-request :conversation-id " + cid
-                    + " :reply-with " + cid + "-r1)");
-            while (true) {
-                Object msg = receive();
-                if (!cid.equals(Sexp.text(Sexp.param(msg, "conversation-id")))) { inbox.add(msg); continue; }
-                if (!head(msg).equals("agree")) return msg;
+                    + " :reply-with " + cid + "-r1 :reply-by " + replyBy + ")");
+            long deadline = System.nanoTime() + span * 1_000_000L;  // our own wait: monotonic
+            List<Object> others = new ArrayList<>();
+            try {
+                while (true) {
+                    long left = (deadline - System.nanoTime()) / 1_000_000L;
+                    if (left <= 0) throw new java.net.SocketTimeoutException();
+                    socket.setSoTimeout((int) Math.min(left, Integer.MAX_VALUE));
+                    Object msg = receive();
+                    if (!cid.equals(Sexp.text(Sexp.param(msg, "conversation-id")))) { others.add(msg); continue; }
+                    if (!head(msg).equals("agree")) return msg;
+                }
+            } catch (java.net.SocketTimeoutException timedOut) {
+                throw new IOException("no answer from " + receiver + " within " + timeout + " s");
+            } finally {
+                socket.setSoTimeout(0);
+                inbox.addAll(others);
             }
         }
+
+        private static final java.time.format.DateTimeFormatter FIPA_TIME =
+                java.time.format.DateTimeFormatter.ofPattern("yyyyMMdd'T'HHmmssSSS'Z'").withZone(java.time.ZoneOffset.UTC);
 
         /** Answer a request: agree, then inform with a result. */
         public void reply(Object request, String performative, String content) throws IOException {

@@ -93,22 +93,43 @@ receive(conn(_, _), Msg) :-
     nb_getval(inbox, [Msg|Rest]), !, nb_setval(inbox, Rest).
 receive(conn(In, Out), Msg) :-
     read_sexp(In, Line),
-    ( param(Line, sender, _) -> Msg = Line ; receive(conn(In, Out), Msg) ).
+    Line = [Head|_],
+    (   param(Line, sender, _) -> Msg = Line
+    ;   % the gateway's own failure may be about a message we sent (an unknown receiver)
+        memberchk(Head, [failure, 'not-understood', error])
+    ->  ( param(Line, reason, Why) -> true ; Why = "" ), throw(gateway_error(Head, Why))
+    ;   receive(conn(In, Out), Msg)
+    ).
 
-% request(+Conn, +Name, +Receiver, +Content, -Answer): fipa-request to its final answer.
+% request(+Conn, +Name, +Receiver, +Content, -Answer): fipa-request to its final answer,
+% with :reply-by 30 s from now; throws no_answer(Receiver) when none came by then.
 request(Conn, Name, Receiver, Content, Answer) :-
-    Conn = conn(_, Out),
+    Conn = conn(In, Out),
     format(atom(Cid), '~w-c1', [Name]), format(atom(Rw), '~w-r1', [Cid]),
+    get_time(Now), Deadline is Now + 30,
+    fipa_time(Deadline, ReplyBy),
     send_line(Out, [request, kw(receiver), [set, ['agent-identifier', kw(name), Receiver]],
                     kw(content), Content, kw(language), 'cf-lang', kw(ontology), 'robocup-soccer',
-                    kw(protocol), 'fipa-request', kw('conversation-id'), Cid, kw('reply-with'), Rw]),
-    await_answer(Conn, Cid, Answer).
+                    kw(protocol), 'fipa-request', kw('conversation-id'), Cid, kw('reply-with'), Rw,
+                    kw('reply-by'), ReplyBy]),
+    catch(await_answer(Conn, Cid, Deadline, Answer),
+          error(timeout_error(read, _), _),
+          throw(no_answer(Receiver))),
+    set_stream(In, timeout(infinite)).
 
-await_answer(Conn, Cid, Answer) :-
+% fipa_time(+Stamp, -Atom): a FIPA date-time in UTC, to the millisecond: 20261125T101010123Z.
+fipa_time(Stamp, Atom) :-
+    stamp_date_time(Stamp, Date, 'UTC'),
+    format_time(atom(Atom), '%Y%m%dT%H%M%S%3fZ', Date).
+
+await_answer(Conn, Cid, Deadline, Answer) :-
+    Conn = conn(In, _),
+    get_time(Now), Left is max(0.001, Deadline - Now),
+    set_stream(In, timeout(Left)),
     receive(Conn, Msg),
     (   param(Msg, 'conversation-id', C), text(C, Cs), text(Cid, Cs), Msg = [Perf|_], Perf \== agree
     ->  Answer = Msg
-    ;   await_answer(Conn, Cid, Answer)
+    ;   await_answer(Conn, Cid, Deadline, Answer)
     ).
 
 reply(conn(_, Out), Request, Performative, Content) :-
