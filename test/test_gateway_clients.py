@@ -174,23 +174,59 @@ def test_cpp_agent(framework, procs, probe, tag, cpp):
     probe.wait_kind(name, "deregistered")  # (bye) deregisters
 
 
-def test_cpp_request_ends_on_the_gateways_failure_and_at_its_reply_by(framework, procs, probe, tag, cpp):
-    """A C++ request to a name nobody registered ends with the gateway's failure instead of
-    waiting for ever; one that nobody answers ends at its timeout, which the receiver reads
-    as the request's :reply-by on the wall clock."""
+@pytest.fixture(scope="module")
+def java_build(tmp_path_factory):
+    """clients/java compiled (the example's classes and the request check)."""
+    need("java")
+    javac = need("javac")
+    out = tmp_path_factory.mktemp("java-build")
+    sources = [str(p) for p in sorted((ROOT / "clients/java").glob("*.java"))]
+    done = subprocess.run([javac, "-d", str(out), *sources], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return out
+
+
+def _request_check(request, language: str) -> list[str]:
+    """The command line of a client's request check, before its HOST PORT NAME MUTE arguments."""
+    if language == "cpp":
+        return [str(request.getfixturevalue("cpp") / "cf_request_check")]
+    if language == "java":
+        return [need("java"), "-cp", str(request.getfixturevalue("java_build")), "RequestCheck"]
+    check = ROOT / "clients/prolog/request_check.pl"
+    return [
+        need("swipl"),
+        "-g",
+        f"consult('{check}')",
+        "-g",
+        "request_check",
+        "-t",
+        "halt",
+        str(ROOT / "clients/prolog/cf_gateway_client.pl"),
+    ]
+
+
+@pytest.mark.parametrize("language", ["cpp", "java", "prolog"])
+def test_a_foreign_request_ends_on_the_gateways_failure_and_at_its_reply_by(
+    request, language, framework, procs, probe, tag
+):
+    """A request to a name nobody registered ends with the gateway's failure instead of waiting
+    for ever; one that nobody answers ends at its timeout, which the receiver reads as the
+    request's :reply-by on the wall clock."""
+    argv = _request_check(request, language)
     mute = f"mute_{tag}"
     with GatewayClient("127.0.0.1", framework, name=mute, timeout=60) as gw:
         gw.register("Hearing", lease=30)
-        argv = [str(cpp / "cf_request_check"), "127.0.0.1", str(framework), f"rc_{tag}", mute]
-        proc = procs.start(argv, "request_check")
-        request = gw.receive()  # taken, never answered
+        proc = procs.start([*argv, "127.0.0.1", str(framework), f"rc_{tag}", mute], "request_check")
+        asked = gw.receive()  # taken, never answered
         received = time.time()
         assert proc.wait(timeout=60) == 0, procs.log("request_check")
-    log = procs.log("request_check")
-    assert "UNKNOWN failure: unknown receiver nobody_registered_this" in log, log
-    assert f"TIMEOUT no answer from {mute} within 1 s" in log, log
-    assert request.performative is Performative.REQUEST and request.reply_by is not None
-    assert received - 10 < request.reply_by < received + 10  # wall-clock seconds, not a monotonic clock
+    lines = procs.log("request_check").splitlines()
+    unknown = next(line for line in lines if line.startswith("UNKNOWN"))
+    timeout = next(line for line in lines if line.startswith("TIMEOUT"))
+    assert "unknown receiver nobody_registered_this" in unknown, lines
+    assert mute in timeout and "ANSWERED" not in timeout, lines
+    assert asked.performative is Performative.REQUEST and asked.reply_by is not None
+    assert received - 10 < asked.reply_by < received + 10  # wall-clock seconds, not a monotonic clock
 
 
 def _form(value) -> str:

@@ -323,11 +323,11 @@ Value Gateway::read_message(Deadline deadline) {
             return read(line);
         }
         if (deadline != Deadline::max()) {
-            auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+            auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
             pollfd ready{fd_, POLLIN, 0};
             int got = left.count() > 0 ? ::poll(&ready, 1, static_cast<int>(left.count())) : 0;
             if (got < 0 && errno == EINTR) continue;
-            if (got == 0) throw GatewayError("nothing from the gateway in time");
+            if (got == 0) throw GatewayTimeout("nothing from the gateway in time");
         }
         char chunk[65536];
         ssize_t n = ::recv(fd_, chunk, sizeof chunk, 0);
@@ -413,24 +413,29 @@ Value Gateway::request(const std::string& receiver, const std::string& content, 
     send_line("(request :receiver (set (agent-identifier :name " + receiver + ")) :content " + quote(content) +
               " :language cf-lang :ontology robocup-soccer :protocol fipa-request :conversation-id " + cid +
               " :reply-with " + cid + "-r1 :reply-by " + fipa_time(std::chrono::system_clock::now() + span) + ")");
-    std::deque<Value> others;
+    std::deque<Value> others;  // of other conversations: back to the inbox, in order, when this one ends
+    auto put_back = [&] {
+        for (auto it = others.rbegin(); it != others.rend(); ++it) inbox_.push_front(std::move(*it));
+    };
     while (true) {
         Value msg;
         try {
             msg = receive(deadline);
-        } catch (const GatewayError&) {
-            for (auto it = others.rbegin(); it != others.rend(); ++it) inbox_.push_front(std::move(*it));
-            if (std::chrono::steady_clock::now() < deadline) throw;
+        } catch (const GatewayTimeout&) {
+            put_back();
             std::ostringstream why;
             why << "no answer from " << receiver << " within " << timeout << " s";
-            throw GatewayError(why.str());
+            throw GatewayTimeout(why.str());
+        } catch (const GatewayError&) {
+            put_back();
+            throw;
         }
         if (text_of(param(msg, "conversation-id")) != cid) {
             others.push_back(std::move(msg));
             continue;
         }
         if (msg.head() == "agree") continue;
-        for (auto it = others.rbegin(); it != others.rend(); ++it) inbox_.push_front(std::move(*it));
+        put_back();
         return msg;
     }
 }

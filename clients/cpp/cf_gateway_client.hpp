@@ -72,6 +72,11 @@ struct GatewayError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Nothing came by a deadline (a request's reply-by).
+struct GatewayTimeout : GatewayError {
+    using GatewayError::GatewayError;
+};
+
 class Gateway {
 public:
     // Connects and says hello (with the token if the gateway requires one).
@@ -96,7 +101,7 @@ public:
     Value receive();
     // A fipa-request to its final answer (inform, failure, refuse, ...); an agree is skipped.
     // The request carries :reply-by now + timeout (wall clock); with no answer by then,
-    // GatewayError. Messages of other conversations that arrive meanwhile are kept.
+    // GatewayTimeout. Messages of other conversations that arrive meanwhile are kept.
     Value request(const std::string& receiver, const std::string& content, double timeout = 30.0);
     // Answers a message of a conversation someone opened with us (agree, inform, failure, ...).
     void reply(const Value& to, const std::string& performative, const std::string& content = "");
@@ -105,7 +110,7 @@ public:
 
 private:
     using Deadline = std::chrono::steady_clock::time_point;
-    // The next line read as a value; GatewayError if none arrives by `deadline`.
+    // The next line read as a value; GatewayTimeout if none arrives by `deadline`.
     Value read_message(Deadline deadline = Deadline::max());
     Value receive(Deadline deadline);
     int fd_ = -1;

@@ -101,21 +101,28 @@ receive(conn(In, Out), Msg) :-
     ;   receive(conn(In, Out), Msg)
     ).
 
-% request(+Conn, +Name, +Receiver, +Content, -Answer): fipa-request to its final answer,
-% with :reply-by 30 s from now; throws no_answer(Receiver) when none came by then.
+% request(+Conn, +Name, +Receiver, +Content, -Answer): request/6 with a 30 s timeout.
 request(Conn, Name, Receiver, Content, Answer) :-
+    request(Conn, Name, Receiver, Content, 30, Answer).
+
+% request(+Conn, +Name, +Receiver, +Content, +Timeout, -Answer): fipa-request to its final
+% answer, with :reply-by Timeout seconds from now; throws no_answer(Receiver, Timeout) when
+% none came by then, and gateway_error(failure, Why) when the gateway refuses the message.
+request(Conn, Name, Receiver, Content, Timeout, Answer) :-
     Conn = conn(In, Out),
     format(atom(Cid), '~w-c1', [Name]), format(atom(Rw), '~w-r1', [Cid]),
-    get_time(Now), Deadline is Now + 30,
+    get_time(Now), Deadline is Now + Timeout,
     fipa_time(Deadline, ReplyBy),
     send_line(Out, [request, kw(receiver), [set, ['agent-identifier', kw(name), Receiver]],
                     kw(content), Content, kw(language), 'cf-lang', kw(ontology), 'robocup-soccer',
                     kw(protocol), 'fipa-request', kw('conversation-id'), Cid, kw('reply-with'), Rw,
                     kw('reply-by'), ReplyBy]),
-    catch(await_answer(Conn, Cid, Deadline, Answer),
-          error(timeout_error(read, _), _),
-          throw(no_answer(Receiver))),
-    set_stream(In, timeout(infinite)).
+    catch(await_answer(Conn, Cid, Deadline, Answer), Error, true),
+    set_stream(In, timeout(infinite)),
+    (   var(Error) -> true
+    ;   Error = error(timeout_error(read, _), _) -> throw(no_answer(Receiver, Timeout))
+    ;   throw(Error)
+    ).
 
 % fipa_time(+Stamp, -Atom): a FIPA date-time in UTC, to the millisecond: 20261125T101010123Z.
 fipa_time(Stamp, Atom) :-

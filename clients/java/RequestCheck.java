@@ -1,0 +1,32 @@
+// Checks how CfGatewayClient.Gateway.request ends when no answer comes, so that a test can see it
+// from outside (compile both files: javac -d out clients/java/*.java):
+//
+//   java -cp out RequestCheck HOST PORT NAME MUTE
+//
+// First a request to a name nobody registered: the gateway's failure must end it ("UNKNOWN <why>").
+// Then a request to MUTE, an agent that takes messages and never answers, with a 1 s timeout:
+// it must end in time ("TIMEOUT <why>"). Exit 0 when both ended as they should, else 1.
+
+import java.io.IOException;
+
+public class RequestCheck {
+    private static boolean endsWithError(CfGatewayClient.Gateway gw, String receiver, double timeout, String tag) {
+        try {
+            Object answer = gw.request(receiver, "(exec Player kick :playerNumber 9 :whichTeam our :power 10)", timeout);
+            System.out.println(tag + " ANSWERED " + answer);
+            return false;
+        } catch (IOException exc) {
+            System.out.println(tag + " " + exc.getMessage());
+            return true;
+        }
+    }
+
+    public static void main(String[] args) throws IOException {
+        try (CfGatewayClient.Gateway gw = new CfGatewayClient.Gateway(args[0], Integer.parseInt(args[1]), args[2], null)) {
+            boolean ok = endsWithError(gw, "nobody_registered_this", 30.0, "UNKNOWN");
+            ok = endsWithError(gw, args[3], 1.0, "TIMEOUT") && ok;
+            System.out.flush();
+            if (!ok) System.exit(1);
+        }
+    }
+}

@@ -1,0 +1,31 @@
+% Checks how request/6 of cf_gateway_client.pl ends when no answer comes, so that a test can see
+% it from outside:
+%
+%   swipl -g "consult('clients/prolog/request_check.pl')" -g request_check -t halt \
+%         clients/prolog/cf_gateway_client.pl HOST PORT NAME MUTE
+%
+% First a request to a name nobody registered: the gateway's failure must end it ("UNKNOWN <why>").
+% Then a request to MUTE, an agent that takes messages and never answers, with a 1 s timeout:
+% it must end in time ("TIMEOUT <why>"). Halts with 0 when both ended as they should, else 1.
+
+request_check :-
+    current_prolog_flag(argv, [Host, PortA, NameA, Mute|_]),
+    atom_number(PortA, Port),
+    nb_setval(inbox, []),
+    tcp_connect(Host:Port, Stream, []),
+    stream_pair(Stream, In, Out),
+    set_stream(In, encoding(utf8)), set_stream(Out, encoding(utf8)),
+    Conn = conn(In, Out),
+    command(Conn, [hello, kw(name), NameA], welcome, _),
+    ends_with_error(Conn, NameA, nobody_registered_this, 30, 'UNKNOWN', Ok1),
+    ends_with_error(Conn, NameA, Mute, 1, 'TIMEOUT', Ok2),
+    command(Conn, [bye], bye, _),
+    close(Stream),
+    ( Ok1 == true, Ok2 == true -> halt(0) ; halt(1) ).
+
+ends_with_error(Conn, Name, Receiver, Timeout, Tag, Ok) :-
+    catch(( request(Conn, Name, Receiver, "(exec Player kick :playerNumber 9 :whichTeam our :power 10)",
+                    Timeout, Answer),
+            format("~w ANSWERED ~w~n", [Tag, Answer]), Ok = false ),
+          Error,
+          ( format("~w ~q~n", [Tag, Error]), Ok = true )).
