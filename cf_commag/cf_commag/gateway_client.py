@@ -54,7 +54,11 @@ class GatewayClient:
         self.file.flush()
 
     def read(self, deadline: float | None = None) -> list:
-        """The next line, read; TimeoutError if none is complete by ``deadline`` (monotonic).
+        """The next line, read; TimeoutError if none is complete by ``deadline`` (monotonic)."""
+        return loads(self.read_line(deadline))
+
+    def read_line(self, deadline: float | None = None) -> bytes:
+        """The next line as it came, without its newline; TimeoutError as :meth:`read`.
 
         Lines are split here rather than by a socket file: a file cannot be read
         again once a read of it timed out, and a request's deadline must not end
@@ -76,7 +80,7 @@ class GatewayClient:
             self._buffer += chunk
         line = bytes(self._buffer[:end])
         del self._buffer[: end + 1]
-        return loads(line)
+        return line
 
     def _next(self, expect: str) -> dict:
         """Read until a gateway form named ``expect``; file ACL messages and events on the way."""
