@@ -50,6 +50,7 @@ from .situation import (
     FIELD_HALF_LENGTH,
     KICKABLE,
     Decision,
+    ball_ahead,
     dist,
     offside_line,
     opponent_on_ball,
@@ -77,6 +78,7 @@ from .without_ball import (
 TACKLE_REACH = 2.0  # m: rcssserver's tackle_dist, the furthest a tackle reaches ahead of the body
 MEET_SLACK = 0.5  # m: how near the point a pass is met at the receiver waits for it
 SUPPORT_SLACK = 1.5  # m: how near the open spot a supporting player goes (a lane is narrow)
+ANTICIPATE = 1  # cycles: the interceptor this near the ball asks for its kick, not for the intercept
 
 
 def decide(
@@ -119,6 +121,13 @@ def decide(
     if may_touch and choose_interceptor(number, my_eta, claims):
         if contested:
             return win_the_ball(state, ball, f"fastest to a contested ball ({my_eta} cycles)")
+        if my_eta <= ANTICIPATE and mode is PlayMode.PLAY_ON:
+            # Decide what to do with it now, on the ball as it will be: the kick skills get to the
+            # ball themselves, and an intercept followed by the next decision left the player idle
+            # at the ball for the cycle that decision took to arrive (docs/performance.md, session 26).
+            coming = ball_ahead(state, my_eta)
+            choice = with_ball(coming, number, xy(coming.ball.positioning))
+            return Decision(choice.method, choice.action, f"{choice.why} (the ball comes: {my_eta} cycles)")
         return Decision("intercept", act.Intercept(), f"fastest to the ball ({my_eta} cycles)")
     meet = meeting(state, number, passes) if may_touch and mode is PlayMode.PLAY_ON else None
     if meet is not None:

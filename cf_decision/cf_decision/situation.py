@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 from cf_lang.ontology import FIELD, AbsolutePositioning, PlayMode, Team, WorldState
 
+from . import reach
 from .reach import Runner, top_speed
 
 FIELD_HALF_LENGTH = FIELD.half_length
@@ -44,6 +45,21 @@ def dist(a: tuple[float, float], b: tuple[float, float]) -> float:
 def point(x: float, y: float) -> AbsolutePositioning:
     """An action's target, kept within a few metres of the field."""
     return AbsolutePositioning(x=max(-60.0, min(60.0, x)), y=max(-40.0, min(40.0, y)))
+
+
+def ball_ahead(state: WorldState, cycles: int) -> WorldState:
+    """``state`` with the ball where it will be after ``cycles`` cycles, rolling on as it will then."""
+    ball = state.ball
+    if cycles <= 0 or ball.velocity is None:
+        return state
+    v = (ball.velocity.vx / reach.CYCLES_PER_SECOND, ball.velocity.vy / reach.CYCLES_PER_SECOND)
+    x, y = reach.ball_path(xy(ball.positioning), v, cycles)[-1]
+    slow = reach.BALL_DECAY**cycles
+    velocity = ball.velocity.model_copy(update={"vx": ball.velocity.vx * slow, "vy": ball.velocity.vy * slow})
+    moved = ball.model_copy(
+        update={"positioning": ball.positioning.model_copy(update={"x": x, "y": y}), "velocity": velocity}
+    )
+    return state.model_copy(update={"ball": moved})
 
 
 def sides(state: WorldState) -> tuple[list[tuple[int, Runner]], list[Runner]]:

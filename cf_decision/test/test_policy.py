@@ -11,7 +11,7 @@ from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line
 from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, free_ways, roomiest
 from cf_decision.without_ball import NEVER, choose_interceptor, marking
-from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
+from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, Velocity, WorldState
 from cf_lang.ontology import actions as act
 
 
@@ -131,6 +131,21 @@ def test_intercept_or_hold_position():
     assert decide(state((0.0, 0.0), ball=(5.0, 0.0)), 7, 11, {}).method == "intercept"
     d = decide(state((-18.0, 0.0), ball=(5.0, 0.0)), 7, 11, {9: 1})
     assert d.method in ("moveTo", "turnToObject")
+
+
+def test_the_interceptor_asks_for_the_kick_as_the_ball_comes_into_reach():
+    """A ball in reach next cycle: the pass is asked for now, judged from where the ball will be
+    (the kick skill gets to it itself); a ball further off is intercepted first."""
+    players = [mate(10, 15.0, 5.0), opp(5, 1.0, 8.0)]
+    coming = state((0.0, 0.0), ball=(2.5, 0.0), players=players)
+    coming = coming.model_copy(update={"ball": Ball(positioning=at(2.5, 0.0), velocity=Velocity(vx=-15.0, vy=0.0))})
+    d = decide(coming, 7, 11, {})
+    assert d.method == "pass" and "the ball comes: 1 cycles" in d.why
+    assert decide(coming, 7, 11, {}, may_touch=False).method != "pass"
+    far = coming.model_copy(update={"ball": Ball(positioning=at(8.0, 0.0), velocity=Velocity(vx=-5.0, vy=0.0))})
+    assert decide(far, 7, 11, {}).method == "intercept"
+    still_set_piece = state((0.0, 0.0), ball=(1.8, 0.0), players=players, mode=PlayMode.FREE_KICK_OUR)
+    assert "the ball comes" not in decide(still_set_piece, 7, 11, {}).why
 
 
 def test_before_kick_off_take_the_formation():
