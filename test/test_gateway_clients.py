@@ -19,7 +19,7 @@ import pytest
 
 from cf_commag.client import Agent
 from cf_commag.gateway_client import GatewayClient
-from cf_lang.acl import Performative
+from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.sexp import Keyword, SexpError, Symbol, dumps, loads, quote
 from cf_system import start_commag, start_component, start_gateway
 
@@ -211,20 +211,27 @@ def test_a_foreign_request_ends_on_the_gateways_failure_and_at_its_reply_by(
 ):
     """A request to a name nobody registered ends with the gateway's failure instead of waiting
     for ever; one that nobody answers ends at its timeout, which the receiver reads as the
-    request's :reply-by on the wall clock."""
+    request's :reply-by on the wall clock; a message of another conversation that came while
+    the client waited is kept for it."""
     argv = _request_check(request, language)
     mute = f"mute_{tag}"
     with GatewayClient("127.0.0.1", framework, name=mute, timeout=60) as gw:
         gw.register("Hearing", lease=30)
         proc = procs.start([*argv, "127.0.0.1", str(framework), f"rc_{tag}", mute], "request_check")
-        asked = gw.receive()  # taken, never answered
+        asked = gw.receive()  # taken, never answered...
         received = time.time()
+        # ...but a message of another conversation comes while the client waits: it must keep it.
+        assert [p["name"] for p in gw.lookup("Monitoring", direction="exact")] == [f"rc_{tag}"]
+        gw.send(
+            AclMessage(Performative.INFORM, receivers=(AgentId(f"rc_{tag}"),), content="(kept)", conversation_id="x")
+        )
         assert proc.wait(timeout=60) == 0, procs.log("request_check")
     lines = procs.log("request_check").splitlines()
     unknown = next(line for line in lines if line.startswith("UNKNOWN"))
     timeout = next(line for line in lines if line.startswith("TIMEOUT"))
     assert "unknown receiver nobody_registered_this" in unknown, lines
     assert mute in timeout and "ANSWERED" not in timeout, lines
+    assert "KEPT (kept)" in lines, lines
     assert asked.performative is Performative.REQUEST and asked.reply_by is not None
     assert received - 10 < asked.reply_by < received + 10  # wall-clock seconds, not a monotonic clock
 

@@ -110,15 +110,19 @@ request(Conn, Name, Receiver, Content, Answer) :-
 % none came by then, and gateway_error(failure, Why) when the gateway refuses the message.
 request(Conn, Name, Receiver, Content, Timeout, Answer) :-
     Conn = conn(In, Out),
-    format(atom(Cid), '~w-c1', [Name]), format(atom(Rw), '~w-r1', [Cid]),
+    ( nb_current(conversations, N0) -> true ; N0 = 0 ), N is N0 + 1, nb_setval(conversations, N),
+    format(atom(Cid), '~w-c~w', [Name, N]), format(atom(Rw), '~w-r1', [Cid]),
     get_time(Now), Deadline is Now + Timeout,
     fipa_time(Deadline, ReplyBy),
     send_line(Out, [request, kw(receiver), [set, ['agent-identifier', kw(name), Receiver]],
                     kw(content), Content, kw(language), 'cf-lang', kw(ontology), 'robocup-soccer',
                     kw(protocol), 'fipa-request', kw('conversation-id'), Cid, kw('reply-with'), Rw,
                     kw('reply-by'), ReplyBy]),
+    nb_setval(held, []),
     catch(await_answer(Conn, Cid, Deadline, Answer), Error, true),
     set_stream(In, timeout(infinite)),
+    % Messages of other conversations that came meanwhile go back to the inbox, in order.
+    nb_getval(held, Held), nb_getval(inbox, Box), append(Held, Box, Box1), nb_setval(inbox, Box1),
     (   var(Error) -> true
     ;   Error = error(timeout_error(read, _), _) -> throw(no_answer(Receiver, Timeout))
     ;   throw(Error)
@@ -134,9 +138,10 @@ await_answer(Conn, Cid, Deadline, Answer) :-
     get_time(Now), Left is max(0.001, Deadline - Now),
     set_stream(In, timeout(Left)),
     receive(Conn, Msg),
-    (   param(Msg, 'conversation-id', C), text(C, Cs), text(Cid, Cs), Msg = [Perf|_], Perf \== agree
-    ->  Answer = Msg
-    ;   await_answer(Conn, Cid, Deadline, Answer)
+    (   param(Msg, 'conversation-id', C), text(C, Cs), text(Cid, Cs)
+    ->  ( Msg = [agree|_] -> await_answer(Conn, Cid, Deadline, Answer) ; Answer = Msg )
+    ;   nb_getval(held, H), append(H, [Msg], H1), nb_setval(held, H1),
+        await_answer(Conn, Cid, Deadline, Answer)
     ).
 
 reply(conn(_, Out), Request, Performative, Content) :-

@@ -6,7 +6,8 @@
 %
 % First a request to a name nobody registered: the gateway's failure must end it ("UNKNOWN <why>").
 % Then a request to MUTE, an agent that takes messages and never answers, with a 1 s timeout:
-% it must end in time ("TIMEOUT <why>"). Halts with 0 when both ended as they should, else 1.
+% it must end in time ("TIMEOUT <why>"). A message of another conversation that came meanwhile
+% must still be there to receive ("KEPT <content>"). Halts with 0 when all went as it should, else 1.
 
 request_check :-
     current_prolog_flag(argv, [Host, PortA, NameA, Mute|_]),
@@ -17,8 +18,11 @@ request_check :-
     set_stream(In, encoding(utf8)), set_stream(Out, encoding(utf8)),
     Conn = conn(In, Out),
     command(Conn, [hello, kw(name), NameA], welcome, _),
+    command(Conn, [register, kw('service-class'), 'Monitoring', kw(lease), 10.0], registered, _),
     ends_with_error(Conn, NameA, nobody_registered_this, 30, 'UNKNOWN', Ok1),
     ends_with_error(Conn, NameA, Mute, 1, 'TIMEOUT', Ok2),
+    receive(Conn, Kept), param(Kept, content, Content),
+    format("KEPT ~w~n", [Content]),
     command(Conn, [bye], bye, _),
     close(Stream),
     ( Ok1 == true, Ok2 == true -> halt(0) ; halt(1) ).
