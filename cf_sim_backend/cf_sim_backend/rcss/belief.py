@@ -35,7 +35,7 @@ from cf_lang.ontology import (
 )
 from cf_sim_backend.perception import relative_mode, to_own_frame, yaw_in_own_frame
 from cf_sim_backend.rcss.localise import localise
-from cf_sim_backend.rcss.protocol import read_see
+from cf_sim_backend.rcss.protocol import param_pairs, read_see
 from cf_sim_backend.world import Params, Side, SimBall, SimPlayer, World, norm_deg, top_speed
 
 PLAYER_MEMORY = 30  # cycles a player not seen again is still reported
@@ -91,10 +91,6 @@ def sim_mode(mode: str) -> str | None:
     if mode == "first_half_over":
         return "half_time"
     return mode if mode in SIM_MODES else None
-
-
-def _num(value) -> float | str:
-    return float(value) if isinstance(value, (int, float)) else str(value)
 
 
 @dataclass
@@ -184,12 +180,10 @@ class Belief:
             self._set_mode(str(msg[2]))
 
     def _on_server_param(self, msg: list) -> None:
-        self.server.update(
-            {str(item[0]): _num(item[1]) for item in msg[1:] if isinstance(item, list) and len(item) == 2}
-        )
+        self.server.update(param_pairs(msg))
 
     def _on_player_type(self, msg: list) -> None:
-        values = {str(item[0]): _num(item[1]) for item in msg[1:] if isinstance(item, list) and len(item) == 2}
+        values = param_pairs(msg)
         if "id" in values:
             self.player_types[int(values["id"])] = values
 

@@ -22,7 +22,7 @@ import sys
 import time
 from dataclasses import dataclass
 
-from cf_sim_backend.rcss.protocol import parse
+from cf_sim_backend.rcss.protocol import param_pairs, parse
 from cf_sim_backend.world import top_speed
 
 ORDER = (10, 3, 4, 9, 11, 7, 2, 5, 6, 8)  # who gets the fastest type first: the spine, then the wings
@@ -73,14 +73,7 @@ def choose_types(types: list[PlayerType], players: list[int], goalie: int = 1, p
 
 def param_values(msg: list) -> dict[str, float]:
     """A parameter message's (name value) pairs whose value is a number."""
-    out = {}
-    for item in msg[1:]:
-        if isinstance(item, list) and len(item) == 2:
-            try:
-                out[str(item[0])] = float(item[1])
-            except (TypeError, ValueError):
-                continue
-    return out
+    return {name: value for name, value in param_pairs(msg).items() if isinstance(value, float)}
 
 
 class CoachClient:

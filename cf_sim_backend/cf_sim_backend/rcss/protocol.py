@@ -23,6 +23,16 @@ def parse(text: str | bytes) -> list:
     return loads(text, limits=RCSS_LIMITS)
 
 
+def param_pairs(msg: list) -> dict[str, float | str]:
+    """A parameter message's ``(name value)`` pairs (server_param, player_param, player_type):
+    numbers as floats, anything else as its text."""
+    return {
+        str(item[0]): float(item[1]) if isinstance(item[1], (int, float)) else str(item[1])
+        for item in msg[1:]
+        if isinstance(item, list) and len(item) == 2
+    }
+
+
 def _flags() -> dict[str, tuple[float, float]]:
     """rcssserver's landmarks: field corners, centre, goals, penalty areas, and the flags 5 m outside."""
     out = {
