@@ -25,8 +25,9 @@ What it does, in order:
 - the team-mate chosen to go for the ball (fastest to it; ties to the lower
   number) intercepts; a cycle before the ball is in his reach he asks for what
   he does with it (as with the ball at his feet, on the ball as it will be);
-  when an opponent has the ball, he goes for it and plays it in one request: in our half to a team-mate up the field who gets it
-  safely, else clear; in theirs towards the goal; the team-mate a pass was
+  when an opponent has the ball, he goes for it and plays it in one request:
+  in our half to a team-mate up the field who gets it safely, else clear; in
+  theirs towards the goal; the team-mate a pass was
   announced to (to a point: the first to reach its path) sets off at once to
   where he meets it, and waits there facing the ball; in our half the second
   fastest stands in his way to our goal, facing the ball; any player within

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from cf_lang.ontology import Player, actions
+from cf_lang.ontology import Player, Velocity, actions
 
 Point = tuple[float, float]
 
@@ -45,6 +45,13 @@ def top_speed(player: Player | None) -> float:
     if player is None or player.top_speed is None:
         return PLAYER_SPEED
     return player.top_speed / CYCLES_PER_SECOND
+
+
+def per_cycle(velocity: Velocity | None) -> Point:
+    """An ontology velocity (metres per second) in metres per cycle; none is a still ball."""
+    if velocity is None:
+        return (0.0, 0.0)
+    return (velocity.vx / CYCLES_PER_SECOND, velocity.vy / CYCLES_PER_SECOND)
 
 
 def pass_speed(dist: float) -> float:

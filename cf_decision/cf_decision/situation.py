@@ -52,8 +52,7 @@ def ball_ahead(state: WorldState, cycles: int) -> WorldState:
     ball = state.ball
     if cycles <= 0 or ball.velocity is None:
         return state
-    v = (ball.velocity.vx / reach.CYCLES_PER_SECOND, ball.velocity.vy / reach.CYCLES_PER_SECOND)
-    x, y = reach.ball_path(xy(ball.positioning), v, cycles)[-1]
+    x, y = reach.ball_path(xy(ball.positioning), reach.per_cycle(ball.velocity), cycles)[-1]
     slow = reach.BALL_DECAY**cycles
     velocity = ball.velocity.model_copy(update={"vx": ball.velocity.vx * slow, "vy": ball.velocity.vy * slow})
     moved = ball.model_copy(

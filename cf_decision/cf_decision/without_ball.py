@@ -25,8 +25,7 @@ def cycles_to_ball(
 ) -> int:
     """Cycles until I, running up to ``speed`` (m/cycle), can have the ball, rolling as it does
     (``velocity``: the ontology's, metres per second)."""
-    v = (velocity.vx / reach.CYCLES_PER_SECOND, velocity.vy / reach.CYCLES_PER_SECOND) if velocity else (0.0, 0.0)
-    return reach.cycles_to_ball(me, ball, v, speed)
+    return reach.cycles_to_ball(me, ball, reach.per_cycle(velocity), speed)
 
 
 def state_eta(state: WorldState) -> int | None:
