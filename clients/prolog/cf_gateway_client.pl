@@ -72,6 +72,13 @@ read_sexp(In, Term) :-
     read_line_to_codes(In, Codes),
     ( Codes == end_of_file -> throw(gateway_closed) ; sexp_codes(Term, Codes) ).
 
+% connect(+Host, +Port, -Conn, -Stream): a UTF-8 connection to the gateway, with an empty inbox.
+connect(Host, Port, conn(In, Out), Stream) :-
+    nb_setval(inbox, []),
+    tcp_connect(Host:Port, Stream, []),
+    stream_pair(Stream, In, Out),
+    set_stream(In, encoding(utf8)), set_stream(Out, encoding(utf8)).
+
 % command(+Conn, +Term, +Expect, -Answer): send, wait for the form named Expect.
 command(conn(In, Out), Term, Expect, Answer) :-
     send_line(Out, Term),
@@ -158,11 +165,7 @@ reply(conn(_, Out), Request, Performative, Content) :-
 main :-
     current_prolog_flag(argv, [Host, PortA, NameA|Rest]),
     atom_number(PortA, Port), atom_string(NameA, Name),
-    nb_setval(inbox, []),
-    tcp_connect(Host:Port, Stream, []),
-    stream_pair(Stream, In, Out),
-    set_stream(In, encoding(utf8)), set_stream(Out, encoding(utf8)),
-    Conn = conn(In, Out),
+    connect(Host, Port, Conn, Stream),
     ( Rest = [Token|_] -> atom_string(Token, T), Hello = [hello, kw(name), NameA, kw(token), T]
     ; Hello = [hello, kw(name), NameA] ),
     command(Conn, Hello, welcome, _),

@@ -12,11 +12,7 @@
 request_check :-
     current_prolog_flag(argv, [Host, PortA, NameA, Mute|_]),
     atom_number(PortA, Port),
-    nb_setval(inbox, []),
-    tcp_connect(Host:Port, Stream, []),
-    stream_pair(Stream, In, Out),
-    set_stream(In, encoding(utf8)), set_stream(Out, encoding(utf8)),
-    Conn = conn(In, Out),
+    connect(Host, Port, Conn, Stream),
     command(Conn, [hello, kw(name), NameA], welcome, _),
     command(Conn, [register, kw('service-class'), 'Monitoring', kw(lease), 10.0], registered, _),
     ends_with_error(Conn, NameA, nobody_registered_this, 30, 'UNKNOWN', Ok1),
