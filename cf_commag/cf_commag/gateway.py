@@ -539,7 +539,7 @@ class _Connection(asyncio.Protocol):
 
     def data_received(self, data: bytes) -> None:
         if self.closing:
-            return
+            return  # after the last line: dropped (see finish)
         self.buffer += data
         if self.busy:
             if len(self.buffer) > 2 * self.config.max_line_bytes:
@@ -548,6 +548,8 @@ class _Connection(asyncio.Protocol):
         self._process()
 
     def eof_received(self) -> bool:
+        if self.finished:
+            return False  # the client has read our last line and closed: close
         self.eof = True
         if not self.busy:
             self._process()
@@ -717,8 +719,15 @@ class _Connection(asyncio.Protocol):
         if abort:
             transport.abort()
             return
-        transport.close()
-        # A peer that never reads would keep the socket open for ever.
+        if self.eof:  # the client has closed its side already: nothing more will come
+            transport.close()
+        else:
+            # Half-close, then read and drop what the client still sends until it closes too.
+            # Closing a socket with unread input makes the kernel send a reset, and a reset
+            # can destroy the final (error ...) line before the client has read it.
+            transport.write_eof()
+            transport.resume_reading()
+        # A peer that never reads, or never closes, would keep the socket open for ever.
         asyncio.get_running_loop().call_later(CLOSE_GRACE, transport.abort)
 
     def _release(self) -> None:

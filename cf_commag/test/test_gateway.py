@@ -237,6 +237,18 @@ def test_oversized_line_closes_with_a_final_error(server):
     assert sock.recv(100) == b""  # closed
 
 
+def test_the_final_error_line_survives_lines_the_client_sent_after_it(server):
+    # The client goes on writing after the line that ends its connection. Closing a socket
+    # with unread input makes the kernel reset it, and the reset can destroy the error line.
+    sock = server.raw()
+    sock.sendall(b"(hello :name talker)\n(ping " + b"x" * 10_000 + b")\n" + b"(ping)\n" * 20_000)
+    time.sleep(0.5)  # the gateway has written its last line and closed its side
+    received = sock.makefile("rb").read().decode().splitlines()  # until the gateway closes
+    assert received[0].startswith("(welcome")
+    assert received[-1].startswith("(error") and "longer than 4096 bytes" in received[-1]
+    assert "(pong)" not in received
+
+
 def test_disconnect_mid_line_releases_everything(server):
     sock = server.raw()
     sock.sendall(b"(hello :name halfway)\n(register :service-class Kick)\n(ping :half")

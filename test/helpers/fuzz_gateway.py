@@ -161,8 +161,8 @@ async def run_connection(host: str, port: int, lines: list[bytes], me: str, time
                     outcome.violations.append(f"{asked} lines, {len(received) - 1} answers")
                 return
     except ConnectionResetError as exc:
-        # After its final line the gateway closes; the kernel resets a socket closed with the
-        # client's lines still unread. The close was announced: that is a close, not a violation.
+        # The gateway half-closes after its final line and drops what still comes, so that
+        # no reset destroys that line. A reset after the line was read is still a close.
         if received and received[-1].startswith("(error"):
             outcome.closed_with_error += 1
         else:
