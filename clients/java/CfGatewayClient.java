@@ -92,7 +92,8 @@ public class CfGatewayClient {
     /** One connection to the gateway. */
     public static final class Gateway implements Closeable {
         private final Socket socket;
-        private final BufferedReader in;
+        private final InputStream in;
+        private final ByteArrayOutputStream partial = new ByteArrayOutputStream();  // a line read in part
         private final Writer out;
         private final Deque<Object> inbox = new ArrayDeque<>();
         public final String name;
@@ -101,7 +102,7 @@ public class CfGatewayClient {
         public Gateway(String host, int port, String name, String token) throws IOException {
             this.name = name;
             socket = new Socket(host, port);
-            in = new BufferedReader(new InputStreamReader(socket.getInputStream(), StandardCharsets.UTF_8));
+            in = new BufferedInputStream(socket.getInputStream());
             out = new OutputStreamWriter(socket.getOutputStream(), StandardCharsets.UTF_8);
             String hello = "(hello :name " + name + (token == null ? "" : " :token " + Sexp.quote(token)) + ")";
             command(hello, "welcome");
@@ -112,10 +113,21 @@ public class CfGatewayClient {
             out.flush();
         }
 
+        /**
+         * The next line, split by us: a BufferedReader loses the part of a line it had read when
+         * a request's timeout interrupts it, and the next line would then start mid-message.
+         */
         private Object readLine() throws IOException {
-            String line = in.readLine();
-            if (line == null) throw new EOFException("gateway closed the connection");
-            return Sexp.read(line);
+            while (true) {
+                int b = in.read();  // a timeout leaves what came so far in partial
+                if (b < 0) throw new EOFException("gateway closed the connection");
+                if (b == '\n') {
+                    String line = partial.toString(StandardCharsets.UTF_8);
+                    partial.reset();
+                    return Sexp.read(line);
+                }
+                partial.write(b);
+            }
         }
 
         private static String head(Object sexp) {
