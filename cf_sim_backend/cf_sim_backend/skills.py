@@ -405,10 +405,15 @@ class Dribble(Skill):
         straight = direction_deg(b.x, b.y, self.x, self.y)
         if not _rolling_along(b, straight, 0.6 * push, max(DODGE_ANGLES)):
             return False
+        if math.hypot(b.vx, b.vy) > push + OUTRUN:
+            # Faster than a touch of mine sends it: a pass or a clearance coming by. Let run, it ran
+            # away from the dribbler who chased it, over the touch line (rcssserver, session 28).
+            return False
         margin = _dribble_margin(world, me, (b.vx, b.vy))
         return margin is not None and margin > 0
 
 
+OUTRUN = 0.2  # m/cycle: a ball faster than the push by more than this is not let run as the dribble's own
 DRIBBLE_FACING = 30.0  # degrees: a dribbler whose body is further off the way turns before he pushes,
 STILL = 0.4  # m/cycle: if the ball is slower than this (it stays in reach meanwhile)
 DODGE_ANGLES = (0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0)  # degrees off the way a dribble's touch may go

@@ -322,3 +322,22 @@ def test_a_new_dribble_lets_a_ball_rolling_its_way_run_unless_a_man_would_get_it
     assert first_command() == "dash"
     # A man on that roll would have it first: the ball is touched onto another way.
     assert first_command((Side.RIGHT, 4, 4.0, 2.5, 180.0)) == "kick"
+
+
+def test_a_new_dribble_takes_a_fast_ball_coming_by_under_control_instead_of_chasing_it():
+    # A pass arrives at his feet, rolling the dribble's way but faster than he runs: let run, it
+    # would run away from him (on rcssserver, over the touch line).
+    sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 0.0))
+    ball = sim.world.ball
+    ball.x, ball.y, ball.vx, ball.vy = 0.5, 0.0, 1.4, 0.0
+    skill, me = skill_of(sim, Side.LEFT, 10, exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10))
+    first = skill.step(sim.world, me).commands[0]
+    assert first[0] == "kick"
+    sim.command(Side.LEFT, 10, *first)
+    sim.step()
+    assert math.hypot(ball.vx, ball.vy) < 1.2  # the touch took pace off it
+    for _ in range(30):
+        for cmd in skill.step(sim.world, me).commands:
+            sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
+        sim.step()
+        assert distance(me.x, me.y, ball.x, ball.y) < 3.0  # still his ball
