@@ -161,7 +161,12 @@ def test_a_ball_not_seen_where_it_would_be_seen_is_no_longer_believed():
 
 @pytest.mark.parametrize(
     "mode, where",
-    [("kick_in_r", (20.0, 34.0)), ("goal_kick_l", (-47.0, 9.16)), ("corner_kick_l", (51.5, 33.0))],
+    [
+        ("kick_in_r", (20.0, 34.0)),
+        ("goal_kick_l", (-47.0, 9.16)),
+        ("corner_kick_l", (51.5, 33.0)),
+        ("kick_off_l", (0.0, 0.0)),  # believed in the goal it went into
+    ],
 )
 def test_the_ball_is_believed_where_the_referee_places_it_for_a_set_piece(mode, where):
     b = _belief()
@@ -169,6 +174,8 @@ def test_the_ball_is_believed_where_the_referee_places_it_for_a_set_piece(mode, 
     b.ball = Track(20.0, 36.0, 0.5, 0.5, 0.2, 10) if mode == "kick_in_r" else Track(-53.0, 5.0, 0.0, 0.0, 0.2, 10)
     if mode == "corner_kick_l":
         b.ball = Track(53.0, 20.0, 1.0, 0.0, 0.2, 10)
+    if mode == "kick_off_l":
+        b.ball = Track(-58.0, -3.0, -0.4, 0.1, 0.2, 10)
     b.update(parse(f"(hear 11 referee {mode})"))
     assert (b.ball.x, b.ball.y) == pytest.approx(where) and (b.ball.vx, b.ball.vy) == (0.0, 0.0)
 

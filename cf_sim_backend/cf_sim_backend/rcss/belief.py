@@ -228,8 +228,13 @@ class Belief:
         self.mode = ours
 
     def _place_ball(self, mode: str) -> None:
-        """Where the server puts the ball for a kick-in, goal kick or corner (rcssserver's referee)."""
+        """Where the server puts the ball for a kick-off, kick-in, goal kick or corner (rcssserver's referee)."""
         b = self.ball
+        if mode.startswith("kick_off_"):
+            # On the centre spot, wherever it was believed: a ball believed in the goal it went into
+            # stayed there for 50 cycles of play for a midfielder who never faced the real one.
+            self.ball = Track(0.0, 0.0, 0.0, 0.0, 1.0 if b is None else max(b.sigma, 1.0), self.time)
+            return
         if b is None or not mode.startswith(("kick_in_", "goal_kick_", "corner_kick_")):
             return
         half_length, half_width = FIELD.length / 2, FIELD.width / 2
