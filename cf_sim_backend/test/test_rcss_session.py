@@ -639,13 +639,25 @@ def test_the_head_sweeps_round_the_ball_a_see_at_a_time_and_the_field_without_on
         heads.append(round(b.me.head))
         b.time = b.see_time = t + 2
     assert heads == [5, 85, 5]  # the ball (at 45) stays 40 degrees inside a 120-degree cone, left then right
-    b.ball = None  # lost: the head swings from one limit of the neck to the other
-    for t in (46, 48):
-        (turn,) = session.act().commands
-        b.me.neck += float(turn[len("(turn_neck ") : -1])
-        heads.append(round(b.me.neck))
-        b.time = b.see_time = t + 2
-    assert sorted(heads[-2:]) == [-90, 90]
+
+
+def test_with_the_ball_lost_the_head_sweeps_round_a_cone_width_a_see_the_way_the_body_turns():
+    from cf_sim_backend.skills import Once
+
+    session = placed_session()
+    b = session.belief
+    b.ball = None  # lost: the decision turns the body a radian a cycle to look for it
+    covered = set()
+    for t in range(41, 49):  # a see every other cycle at the normal width: four sees
+        b.time = b.sense_time = t
+        session.start(Once(("turn", -57.3), "turn"))
+        look(session)
+        if t % 2:
+            b.see_time = t
+            covered |= {round(norm_deg(b.me.head + a)) for a in range(-60, 61)}
+    # Four sees of a 120-degree cone see all round. Swinging the neck from limit to limit while the
+    # body turned left 47 degrees unseen after four sees, and 5 after six.
+    assert len(covered) >= 359
 
 
 def placed_session() -> PlayerSession:

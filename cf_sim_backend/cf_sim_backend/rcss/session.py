@@ -90,6 +90,7 @@ class PlayerSession:
     _scan_see: int = field(default=-1, init=False)  # the see the head's scan last swung at
     _scan_side: int = field(default=1, init=False)
     _scan_turn: int = field(default=0, init=False)  # counts sees: the phase of the look round
+    _sweep: tuple[int, float] | None = field(default=None, init=False)  # no ball: (see, where the head looks)
     _necked: int = field(default=-1, init=False)  # the last cycle a turn_neck went out
     _viewed: int = field(default=-1, init=False)  # the last cycle a change_view went out
     view: str = "normal"  # the view width the next see comes with (asked for; the server confirms in sense_body)
@@ -172,8 +173,8 @@ class PlayerSession:
         Each see the head swings to the other side, SCAN_OFFSET off the ball, so the ball stays
         in view and every other see shows a different half of what is round it; with the ball
         within AROUND_WITHIN it looks round the player instead; with no ball believed, the head
-        swings between the neck's limits. A pass is only as safe as the opponents the player has
-        seen lately.
+        sweeps round a cone's width a see, the way the body turns. A pass is only as safe as the
+        opponents the player has seen lately.
         """
         b, me = self.belief, self.belief.me
         if self._necked == b.time or me.localised < 0:
@@ -185,6 +186,8 @@ class PlayerSession:
         if pending is not None and pending[1] == b.sense_time:  # this cycle's turn moves the body the neck is on
             body = norm_deg(body + pending[2][0])
         half = HALF_VIEW.get(self.view, 60.0)
+        if b.ball is not None:
+            self._sweep = None
         if b.ball is not None and math.hypot(b.ball.x - me.x, b.ball.y - me.y) <= AROUND_WITHIN:
             # The ball at our feet is seen wherever the head points: look left of the body, ahead
             # and right in turn, a cone's width apart. With the head on the ball, a narrow cone hid
@@ -201,8 +204,17 @@ class PlayerSession:
             offset = min(SCAN_OFFSET, half - SCAN_MARGIN)
             target = norm_deg(to_ball + self._scan_side * offset - body)
         else:
-            target = self._scan_side * NECK_LIMIT
+            # Swinging from one limit of the neck to the other while the body turned a radian a
+            # cycle pointed the head nearly at random: a defender 7 m from the ball looked for it
+            # for 13 cycles while the goal he was to defend was scored (session 28).
+            if self._sweep is None or self._sweep[0] != b.see_time:
+                way = -1.0 if pending is not None and pending[1] == b.sense_time and pending[2][0] < 0 else 1.0
+                start = me.head if self._sweep is None else self._sweep[1]
+                self._sweep = (b.see_time, norm_deg(start + way * 2.0 * half))
+            target = norm_deg(self._sweep[1] - body)
         neck = max(-NECK_LIMIT, min(NECK_LIMIT, target))
+        if b.ball is None:  # as far as the neck goes: the next cone's width on from there
+            self._sweep = (b.see_time, norm_deg(body + neck))
         turn = neck - me.neck
         if abs(turn) < 1.0:
             return []
