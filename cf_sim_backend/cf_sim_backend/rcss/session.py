@@ -90,7 +90,7 @@ class PlayerSession:
     _scan_see: int = field(default=-1, init=False)  # the see the head's scan last swung at
     _scan_side: int = field(default=1, init=False)
     _scan_turn: int = field(default=0, init=False)  # counts sees: the phase of the look round
-    _sweep: tuple[int, float] | None = field(default=None, init=False)  # no ball: (see, where the head looks)
+    _sweep: float | None = field(default=None, init=False)  # no ball believed: where the head's sweep has got to
     _necked: int = field(default=-1, init=False)  # the last cycle a turn_neck went out
     _viewed: int = field(default=-1, init=False)  # the last cycle a change_view went out
     view: str = "normal"  # the view width the next see comes with (asked for; the server confirms in sense_body)
@@ -179,12 +179,12 @@ class PlayerSession:
         b, me = self.belief, self.belief.me
         if self._necked == b.time or me.localised < 0:
             return []  # one turn_neck a cycle, and none before we know where we look
-        if b.see_time != self._scan_see:
+        new_see = b.see_time != self._scan_see
+        if new_see:
             self._scan_see, self._scan_side, self._scan_turn = b.see_time, -self._scan_side, self._scan_turn + 1
-        body = me.body
         pending = b.pending.get("turn")
-        if pending is not None and pending[1] == b.sense_time:  # this cycle's turn moves the body the neck is on
-            body = norm_deg(body + pending[2][0])
+        turning = pending[2][0] if pending is not None and pending[1] == b.sense_time else 0.0
+        body = norm_deg(me.body + turning)  # this cycle's turn moves the body the neck is on
         half = HALF_VIEW.get(self.view, 60.0)
         if b.ball is not None:
             self._sweep = None
@@ -207,14 +207,13 @@ class PlayerSession:
             # Swinging from one limit of the neck to the other while the body turned a radian a
             # cycle pointed the head nearly at random: a defender 7 m from the ball looked for it
             # for 13 cycles while the goal he was to defend was scored (session 28).
-            if self._sweep is None or self._sweep[0] != b.see_time:
-                way = -1.0 if pending is not None and pending[1] == b.sense_time and pending[2][0] < 0 else 1.0
-                start = me.head if self._sweep is None else self._sweep[1]
-                self._sweep = (b.see_time, norm_deg(start + way * 2.0 * half))
-            target = norm_deg(self._sweep[1] - body)
+            if self._sweep is None or new_see:
+                start = me.head if self._sweep is None else self._sweep
+                self._sweep = norm_deg(start + (-2.0 if turning < 0 else 2.0) * half)
+            target = norm_deg(self._sweep - body)
         neck = max(-NECK_LIMIT, min(NECK_LIMIT, target))
         if b.ball is None:  # as far as the neck goes: the next cone's width on from there
-            self._sweep = (b.see_time, norm_deg(body + neck))
+            self._sweep = norm_deg(body + neck)
         turn = neck - me.neck
         if abs(turn) < 1.0:
             return []
