@@ -88,8 +88,7 @@ class GatewayClient:
             sexp = self.read()
             head = str(sexp[0])
             params = _pairs(sexp[1:])
-            if head in ("failure", "not-understood", "error") and "sender" not in params:
-                raise GatewayError(f"{head}: {params.get('reason')}")
+            _raise_if_refused(head, params)
             if head == expect:
                 return {"_items": sexp[1:], **params}
             if head == "event":
@@ -136,8 +135,7 @@ class GatewayClient:
             params = _pairs(sexp[1:])
             if head in _PERFORMATIVES and "sender" in params:
                 return acl.from_sexp(sexp)
-            if head in ("failure", "not-understood", "error"):
-                raise GatewayError(f"{head}: {params.get('reason')}")
+            _raise_if_refused(head, params)
 
     def request(
         self, receiver: str, content: str, *, protocol: str = "fipa-request", timeout: float = 30.0
@@ -191,3 +189,10 @@ def _pairs(items: list) -> dict:
         if type(items[i]) is Keyword:
             out[items[i].name] = items[i + 1]
     return out
+
+
+def _raise_if_refused(head: str, params: dict) -> None:
+    """The gateway's own failure, not-understood or error (it has no :sender) as GatewayError:
+    an answer to a command, or a refusal of a message sent (an unknown receiver, say)."""
+    if head in ("failure", "not-understood", "error") and "sender" not in params:
+        raise GatewayError(f"{head}: {params.get('reason')}")

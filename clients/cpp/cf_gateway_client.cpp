@@ -340,16 +340,20 @@ Value Gateway::read_message(Deadline deadline) {
     }
 }
 
+// The gateway's own failure, not-understood or error (it has no :sender) as a GatewayError.
+static void throw_if_refused(const Value& msg) {
+    std::string head = msg.head();
+    if (param(msg, "sender") == nullptr && (head == "failure" || head == "not-understood" || head == "error"))
+        throw GatewayError(head + ": " + text_of(param(msg, "reason")));
+}
+
 Value Gateway::command(const std::string& line, const std::string& expect) {
     send_line(line);
     while (true) {
         Value answer = read_message();
-        std::string head = answer.head();
-        bool from_gateway = param(answer, "sender") == nullptr;
-        if (from_gateway && (head == "failure" || head == "not-understood" || head == "error"))
-            throw GatewayError(head + ": " + text_of(param(answer, "reason")));
-        if (head == expect) return answer;
-        if (!from_gateway) inbox_.push_back(std::move(answer));
+        throw_if_refused(answer);
+        if (answer.head() == expect) return answer;
+        if (param(answer, "sender") != nullptr) inbox_.push_back(std::move(answer));
     }
 }
 
@@ -387,9 +391,7 @@ Value Gateway::receive(Deadline deadline) {
         if (param(msg, "sender") != nullptr) return msg;
         // What the gateway says itself is not ACL; but a failure may be about a message we
         // sent (an unknown receiver, say), and whoever waits for its answer must hear it.
-        std::string head = msg.head();
-        if (head == "failure" || head == "not-understood" || head == "error")
-            throw GatewayError(head + ": " + text_of(param(msg, "reason")));
+        throw_if_refused(msg);
     }
 }
 

@@ -140,11 +140,9 @@ public class CfGatewayClient {
             while (true) {
                 Object answer = readLine();
                 String h = head(answer);
-                boolean fromGateway = Sexp.param(answer, "sender") == null;
-                if (fromGateway && (h.equals("failure") || h.equals("not-understood") || h.equals("error")))
-                    throw new IOException(h + ": " + Sexp.text(Sexp.param(answer, "reason")));
+                throwIfRefused(answer);
                 if (h.equals(expect)) return answer;
-                if (!fromGateway) inbox.add(answer);
+                if (Sexp.param(answer, "sender") != null) inbox.add(answer);
             }
         }
 
@@ -169,10 +167,16 @@ public class CfGatewayClient {
                 if (Sexp.param(msg, "sender") != null) return msg;
                 // The gateway's own failure may be about a message we sent (an unknown receiver):
                 // whoever waits for its answer must hear it.
-                String h = head(msg);
-                if (h.equals("failure") || h.equals("not-understood") || h.equals("error"))
-                    throw new IOException(h + ": " + Sexp.text(Sexp.param(msg, "reason")));
+                throwIfRefused(msg);
             }
+        }
+
+        /** The gateway's own failure, not-understood or error (it has no :sender) as an IOException. */
+        private static void throwIfRefused(Object msg) throws IOException {
+            String h = head(msg);
+            if (Sexp.param(msg, "sender") == null
+                    && (h.equals("failure") || h.equals("not-understood") || h.equals("error")))
+                throw new IOException(h + ": " + Sexp.text(Sexp.param(msg, "reason")));
         }
 
         /** A fipa-request to its final answer (an agree is skipped); IOException with none in 30 s. */

@@ -87,9 +87,8 @@ command(conn(In, Out), Term, Expect, Answer) :-
 wait_for(In, Expect, Answer) :-
     read_sexp(In, Line),
     Line = [Head|_],
+    raise_if_refused(Line),
     (   Head == Expect -> Answer = Line
-    ;   memberchk(Head, [failure, 'not-understood', error]), \+ param(Line, sender, _)
-    ->  ( param(Line, reason, Why) -> true ; Why = "" ), throw(gateway_error(Head, Why))
     ;   param(Line, sender, _) -> nb_getval(inbox, Box), append(Box, [Line], Box1), nb_setval(inbox, Box1),
         wait_for(In, Expect, Answer)
     ;   wait_for(In, Expect, Answer)
@@ -100,12 +99,18 @@ receive(conn(_, _), Msg) :-
     nb_getval(inbox, [Msg|Rest]), !, nb_setval(inbox, Rest).
 receive(conn(In, Out), Msg) :-
     read_sexp(In, Line),
-    Line = [Head|_],
     (   param(Line, sender, _) -> Msg = Line
     ;   % the gateway's own failure may be about a message we sent (an unknown receiver)
-        memberchk(Head, [failure, 'not-understood', error])
+        raise_if_refused(Line), receive(conn(In, Out), Msg)
+    ).
+
+% raise_if_refused(+Line): throws gateway_error(Head, Why) when Line is the gateway's own
+% failure, not-understood or error (it has no :sender); else succeeds.
+raise_if_refused(Line) :-
+    Line = [Head|_],
+    (   memberchk(Head, [failure, 'not-understood', error]), \+ param(Line, sender, _)
     ->  ( param(Line, reason, Why) -> true ; Why = "" ), throw(gateway_error(Head, Why))
-    ;   receive(conn(In, Out), Msg)
+    ;   true
     ).
 
 % request(+Conn, +Name, +Receiver, +Content, -Answer): request/6 with a 30 s timeout.
