@@ -177,7 +177,7 @@ def test_cpp_agent(framework, procs, probe, tag, cpp):
 
 @pytest.fixture(scope="module")
 def java_build(tmp_path_factory):
-    """clients/java compiled (the example's classes and the request check)."""
+    """clients/java compiled (the example's classes and the checks)."""
     need("java")
     javac = need("javac")
     out = tmp_path_factory.mktemp("java-build")
@@ -237,28 +237,27 @@ def test_a_foreign_request_ends_on_the_gateways_failure_and_at_its_reply_by(
     assert received - 10 < asked.reply_by < received + 10  # wall-clock seconds, not a monotonic clock
 
 
-def test_a_java_request_timing_out_in_the_middle_of_a_line_loses_nothing(request, procs, tmp_path):
+def test_a_java_request_timing_out_in_the_middle_of_a_line_loses_nothing(request, procs):
     """A slow network may cut a line anywhere; a request's timeout may come in the cut. The real
     gateway writes whole lines on loopback, so here a scripted peer on a real socket speaks for
     it: the welcome, then half a message of another conversation, and the rest 3 s later."""
     argv = [need("java"), "-cp", str(request.getfixturevalue("java_build")), "SplitLineCheck"]
     message = '(inform :sender (agent-identifier :name slow_peer) :receiver (set (agent-identifier :name sl)) :content "(kept whole)" :conversation-id other)'
-    server = socket.create_server(("127.0.0.1", 0))
-    server.settimeout(60)
-    proc = procs.start([*argv, "127.0.0.1", str(server.getsockname()[1]), "sl"], "split_line_check")
-    conn, _ = server.accept()
-    with conn, conn.makefile("rb") as lines:
-        conn.settimeout(60)
-        assert lines.readline().startswith(b"(hello :name sl")
-        conn.sendall(b"(welcome :name sl)\n")
-        assert lines.readline().startswith(b"(request ")
-        half = len(message) // 2
-        conn.sendall(message[:half].encode())
-        time.sleep(3.0)  # the request's 1 s timeout comes while half the line has been read
-        conn.sendall(message[half:].encode() + b"\n")
-        assert lines.readline() == b"(bye)\n"
-        conn.sendall(b"(bye)\n")
-    server.close()
+    with socket.create_server(("127.0.0.1", 0)) as server:
+        server.settimeout(60)
+        proc = procs.start([*argv, "127.0.0.1", str(server.getsockname()[1]), "sl"], "split_line_check")
+        conn, _ = server.accept()
+        with conn, conn.makefile("rb") as lines:
+            conn.settimeout(60)
+            assert lines.readline().startswith(b"(hello :name sl")
+            conn.sendall(b"(welcome :name sl)\n")
+            assert lines.readline().startswith(b"(request ")
+            half = len(message) // 2
+            conn.sendall(message[:half].encode())
+            time.sleep(3.0)  # the request's 1 s timeout comes while half the line has been read
+            conn.sendall(message[half:].encode() + b"\n")
+            assert lines.readline() == b"(bye)\n"
+            conn.sendall(b"(bye)\n")
     assert proc.wait(timeout=60) == 0, procs.log("split_line_check")
     log = procs.log("split_line_check").splitlines()
     assert any(line.startswith("TIMEOUT no answer from slow_peer") for line in log), log
