@@ -84,17 +84,26 @@ def opponent_on_ball(state: WorldState, ball: tuple[float, float]) -> bool:
 
 
 def their_ball(state: WorldState, ball: tuple[float, float]) -> bool:
-    """An opponent is the player nearest the ball (or has it at his feet)."""
-    nearest_opp = min(
-        (dist(xy(p.positioning), ball) for p in state.players if p.which_team is Team.OPP and p.positioning),
-        default=None,
-    )
-    if nearest_opp is None:
+    """The ball is the opponents': one has it at his feet (within 2 m, nearer than any of us), or
+    one gets to it, rolling as it does, sooner than any of us (reach model; ties are ours).
+
+    Who stood nearest the ball changed two or three times along an opponent's pass (the passer,
+    whoever it rolled by, the receiver), and each change switched the defenders between marking
+    and holding, each switch a turn (docs/performance.md, session 29).
+    """
+    mates, opponents = sides(state)
+    if not opponents:
         return False
-    ours = [dist(xy(p.positioning), ball) for p in state.players if p.which_team is Team.OUR and p.positioning]
+    ours = [runner for _, runner in mates]
     if state.me and state.me.positioning:
-        ours.append(dist(xy(state.me.positioning), ball))
-    return nearest_opp < 2.0 or nearest_opp < min(ours, default=1e9)
+        ours.append(Runner(xy(state.me.positioning), False, top_speed(state.me)))
+    nearest_opp = min(dist(o.pos, ball) for o in opponents)
+    if nearest_opp < 2.0 and nearest_opp <= min((dist(r.pos, ball) for r in ours), default=1e9):
+        return True
+    velocity = reach.per_cycle(state.ball.velocity if state.ball else None)
+    path = [ball, *reach.ball_path(ball, velocity)]
+    theirs, mine = reach.first_cycles(path, opponents, react=0), reach.first_cycles(path, ours, react=0)
+    return theirs is not None and (mine is None or theirs < mine)
 
 
 def our_ball(state: WorldState, ball: tuple[float, float]) -> bool:

@@ -8,7 +8,7 @@ from cf_decision.policy import decide
 from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
 from cf_decision.roles import Role, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
-from cf_decision.situation import offside_line
+from cf_decision.situation import offside_line, their_ball
 from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, free_ways, roomiest
 from cf_decision.without_ball import NEVER, choose_interceptor, marking
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, Velocity, WorldState
@@ -146,6 +146,21 @@ def test_the_interceptor_asks_for_the_kick_as_the_ball_comes_into_reach():
     assert decide(far, 7, 11, {}).method == "intercept"
     still_set_piece = state((0.0, 0.0), ball=(1.8, 0.0), players=players, mode=PlayMode.FREE_KICK_OUR)
     assert "the ball comes" not in decide(still_set_piece, 7, 11, {}).why
+
+
+def test_an_opponents_pass_stays_their_ball_while_it_rolls_by_one_of_us():
+    """Nearest the ball, our midfielder was "on the ball" for a cycle or two of an opponent's pass
+    rolling by him: the defenders stopped marking and started again. The ball is the receiver's."""
+    players = [opp(6, 10.0, 0.0), opp(9, -12.0, 0.0)]
+    rolling = state((3.0, 3.0), ball=(4.0, 0.0), players=players)
+    rolling = rolling.model_copy(update={"ball": Ball(positioning=at(4.0, 0.0), velocity=Velocity(vx=-25.0, vy=0.0))})
+    assert their_ball(rolling, (4.0, 0.0))
+    mine = rolling.model_copy(update={"ball": Ball(positioning=at(4.0, 0.0), velocity=Velocity(vx=-3.0, vy=10.0))})
+    assert not their_ball(mine, (4.0, 0.0))  # a slow ball rolling my way is mine
+    still = state((3.0, 3.0), ball=(4.0, 0.0), players=[opp(6, 9.0, 0.0)])
+    assert not their_ball(still, (4.0, 0.0))  # a still ball: the nearer player's
+    at_feet = state((3.0, 3.0), ball=(4.0, 0.0), players=[opp(6, 5.5, 0.0)])
+    assert their_ball(at_feet, (4.0, 0.0))
 
 
 def test_before_kick_off_take_the_formation():
