@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from rcss_ball_use import ball_use, reason, table, territory, territory_table
+from rcss_options import best_gain, bin_of, options
+from rcss_options import table as options_table
 from rcss_picture import picture
 from rcss_picture import table as picture_table
 from rcss_reach_fit import kicks as reach_kicks
@@ -16,6 +19,8 @@ from rcss_reach_fit import table as reach_table
 from rcss_series import again, match_stats, read_rcg, top_speeds
 from rcss_set_pieces import kind_of, set_pieces
 from rcss_set_pieces import table as set_piece_table
+
+from cf_decision import reach
 
 
 def show(t: int, ball_x: float, kicks: dict[tuple[str, int], int], where: dict[tuple[str, int], float]) -> str:
@@ -266,3 +271,21 @@ def test_each_sides_top_speed_is_read_from_the_types_its_players_kick_off_with(t
     assert top_speeds(tmp_path / "m.rcg", "r") == [1.0, 0.9]
     (tmp_path / "m.rcg").write_text("ULG6\n" + kick_off(1, at_kick_off) + "\n")
     assert top_speeds(tmp_path / "m.rcg", "l") is None  # a log without types
+
+
+def test_the_truth_of_each_kick_says_how_far_up_a_ball_reached_a_team_mate_first(tmp_path):
+    """CF 9 on the ball in the middle, CF 10 25 m up with nobody near: a ball gains 20 m or more."""
+    where = {("l", 9): (0.0, 0.0), ("l", 10): (25.0, 0.0), ("r", 3): (-30.0, 20.0), ("r", 1): (50.0, 0.0)}
+    kicks_of = {key: 0 for key in where}
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 6):
+        kicks_of[("l", 9)] += t == 2
+        lines.append(f"(show {t} ((b) 0.5 0 0 0) {players_at(where, kicks_of)})")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    counts = options(tmp_path, "CF")
+    assert counts == {("middle third", "20 m or more"): 1}
+    assert "| middle third | 1 | 0 | 0 | 0 | 0 | 1 |" in options_table(counts)
+    # Twelve men 3 m round the ball: every way is theirs.
+    ring = [reach.Runner((3.0 * math.cos(k * math.pi / 6), 3.0 * math.sin(k * math.pi / 6))) for k in range(12)]
+    assert best_gain((0.0, 0.0), [(25.0, 0.0)], ring, 2.7, 2) is None and bin_of(None) == "none"
+    assert bin_of(-3.0) == "< 0 m" and bin_of(12.0) == "10-20 m"
