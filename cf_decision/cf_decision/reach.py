@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from cf_lang.ontology import Player, Velocity, actions
+from cf_lang.ontology import FIELD, Player, Velocity, actions
 
 Point = tuple[float, float]
 
@@ -73,6 +73,14 @@ def kicked_path(start: Point, target: Point, speed: float) -> list[Point]:
     """The path of a ball kicked from ``start`` towards ``target`` at ``speed``."""
     angle = math.atan2(target[1] - start[1], target[0] - start[0])
     return ball_path(start, (speed * math.cos(angle), speed * math.sin(angle)))
+
+
+def in_field(path: list[Point]) -> list[Point]:
+    """``path`` up to where the ball leaves the field (over a touch line or a goal line)."""
+    for n, (x, y) in enumerate(path):
+        if abs(y) > FIELD.width / 2 or abs(x) > FIELD.length / 2:
+            return path[:n]
+    return path
 
 
 def cycles_to_path(
