@@ -34,7 +34,7 @@ def pass_room(
     d = dist(ball, spot)
     if not 4.0 <= d <= 40.0:
         return -reach.HORIZON
-    path = reach.kicked_path(ball, spot, reach.pass_speed(d))
+    path = reach.in_field(reach.kicked_path(ball, spot, reach.pass_speed(d)))
     mine = reach.first_cycles(path, [reach.Runner(spot, False, speed)])
     if mine is None:
         return -reach.HORIZON

@@ -154,7 +154,8 @@ def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1
             d = dist(ball, target)
             if not 4.0 <= d <= 40.0:
                 continue
-            path = reach.kicked_path(ball, target, reach.pass_speed(d))
+            # A pass to a point keeps rolling past it: received beyond a line, it is theirs.
+            path = reach.in_field(reach.kicked_path(ball, target, reach.pass_speed(d)))
             ours = reach.first_cycles(path, ours_all)
             if ours is None:
                 continue
@@ -303,9 +304,7 @@ def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[
     for degrees in CLEAR_ANGLES:
         heading = math.radians(degrees)
         target = (ball[0] + CLEAR_AIM * math.cos(heading), ball[1] + CLEAR_AIM * math.sin(heading))
-        path = reach.kicked_path(ball, target, CLEAR_SPEED)
-        inside = next((n for n, (_, y) in enumerate(path) if abs(y) > FIELD.width / 2), len(path))
-        path = path[: max(1, inside)]
+        path = reach.in_field(reach.kicked_path(ball, target, CLEAR_SPEED)) or [ball]
         ours, theirs = reach.first_cycles(path, ours_all), reach.first_cycles(path, opponents)
         kept = ours is not None and (theirs is None or theirs - ours >= SAFE_MARGIN)
         met = path[(ours if kept else theirs or len(path)) - 1]

@@ -479,3 +479,16 @@ def test_in_our_half_a_safe_pass_that_loses_little_ground_comes_before_a_clearan
     assert best_pass(in_our_box, (-37.5, -5.0)) is not None  # safe, but received in our penalty area
     d = decide(in_our_box, 4, 11, {})
     assert d.method == "pass" and d.why == "clear the ball"
+
+
+def test_a_pass_is_never_judged_received_beyond_the_touch_line():
+    # A wide forward near the touch line: a through ball 10 m ahead of him rolls on past its point
+    # and would be "received" 3.6 m outside the field, gaining 13 m. Out there the ball is theirs.
+    ball, wide = (3.78, 11.39), (2.77, 29.48)
+    players = [mate(11, *wide), opp(2, 3.82, 9.28), opp(3, 20.12, 15.46), opp(4, 8.44, 16.11)]
+    choice = best_pass(state((3.28, 11.39), ball=ball, players=players, number=10), ball)
+    assert choice is not None and choice.number == 11
+    target = choice.target or wide
+    path = kicked_path(ball, target, pass_speed(math.dist(ball, target)))
+    received = path[first_cycles(path, [Runner(wide)]) - 1]
+    assert abs(received[1]) <= 34.0 and choice.gain < 10.0  # not a "forward pass" into touch
