@@ -128,10 +128,16 @@ def table(outcomes: dict[tuple[str, str], Outcome], after: int) -> str:
     return "\n".join(rows)
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def match_parser(doc: str) -> argparse.ArgumentParser:
+    """The command line every match analysis tool starts from: match directories and ``--team``."""
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     ap.add_argument("matches", nargs="+", type=Path, help="match directories (rcss_match.py --out)")
     ap.add_argument("--team", default="CF", help="our team's name in the game log")
+    return ap
+
+
+def main() -> int:
+    ap = match_parser(__doc__)
     ap.add_argument("--after", type=int, default=30, help="cycles: how long a reason holds, when the advance is read")
     args = ap.parse_args()
     total: dict[tuple[str, str], Outcome] = defaultdict(Outcome)

@@ -15,14 +15,13 @@ more. It tells whether the team lacked options or chose badly among them (docs/p
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 from collections import Counter
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import game
+from rcss_ball_use import game, match_parser
 from rcss_series import kick_events
 
 from cf_decision import reach
@@ -86,9 +85,7 @@ def table(counts: Counter) -> str:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("matches", nargs="+", type=Path, help="match directories (rcss_match.py --out)")
-    ap.add_argument("--team", default="CF", help="our team's name in the game log")
+    ap = match_parser(__doc__)
     ap.add_argument("--speed", type=float, default=2.7, help="m/cycle the ball leaves the foot with")
     ap.add_argument("--margin", type=int, default=2, help="cycles a team-mate must be first by")
     args = ap.parse_args()

@@ -12,7 +12,6 @@ of where they stood. This is how docs/performance.md counts what the passer had 
 
 from __future__ import annotations
 
-import argparse
 import math
 import re
 import sys
@@ -20,7 +19,7 @@ from collections import defaultdict
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import game, reason
+from rcss_ball_use import game, match_parser, reason
 
 _AIMED = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) \w+: (.*?) @ target \S+ \S+ ball \S+ \S+ opp ?(.*)")
 
@@ -62,9 +61,7 @@ def table(rows: dict[str, list[int]], near: float, within: float) -> str:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("matches", nargs="+", type=Path, help="match directories (rcss_match.py --out)")
-    ap.add_argument("--team", default="CF", help="our team's name in the game log")
+    ap = match_parser(__doc__)
     ap.add_argument("--near", type=float, default=25.0, help="m from the ball: the opponents counted")
     ap.add_argument("--within", type=float, default=3.0, help="m: believed this close to the truth counts as known")
     args = ap.parse_args()

@@ -20,7 +20,6 @@ he moves SET_OFF_STEP or more towards that point (never within SET_OFF_WITHIN cy
 
 from __future__ import annotations
 
-import argparse
 import itertools
 import math
 import sys
@@ -29,7 +28,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import game
+from rcss_ball_use import game, match_parser
 from rcss_series import kick_events
 
 from cf_decision import reach
@@ -166,9 +165,7 @@ def set_off_table(lags: dict[str, Counter], team: str) -> str:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("matches", nargs="+", type=Path, help="match directories (rcss_match.py --out)")
-    ap.add_argument("--team", default="CF", help="our team's name in the game log")
+    ap = match_parser(__doc__)
     ap.add_argument("--react", default="1,2,3", help="comma-separated: cycles before a team-mate sets off")
     args = ap.parse_args()
     all_kicks, lags = [], {"us": Counter(), "them": Counter()}

@@ -14,7 +14,6 @@ kick-offs.
 
 from __future__ import annotations
 
-import argparse
 import math
 import statistics
 import sys
@@ -23,6 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rcss_ball_use import match_parser
 from rcss_series import read_rcg, side_of
 
 THIRD_X = 52.5 / 3  # m: their third starts this far from the halfway line
@@ -96,9 +96,7 @@ def table(pieces: list[SetPiece], window: int) -> str:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("matches", nargs="+", type=Path, help="match directories (rcss_match.py --out)")
-    ap.add_argument("--team", default="CF", help="our team's name in the game log")
+    ap = match_parser(__doc__)
     ap.add_argument("--window", type=int, default=150, help="cycles after the kick that are followed")
     args = ap.parse_args()
     pieces = []
