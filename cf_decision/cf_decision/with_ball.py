@@ -304,7 +304,10 @@ def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[
     for degrees in CLEAR_ANGLES:
         heading = math.radians(degrees)
         target = (ball[0] + CLEAR_AIM * math.cos(heading), ball[1] + CLEAR_AIM * math.sin(heading))
-        path = reach.in_field(reach.kicked_path(ball, target, CLEAR_SPEED)) or [ball]
+        path = reach.in_field(reach.kicked_path(ball, target, CLEAR_SPEED))
+        if not path:  # over the line at once: lost where it lies
+            ways.append(((False, ball[0], -abs(degrees)), target))
+            continue
         ours, theirs = reach.first_cycles(path, ours_all), reach.first_cycles(path, opponents)
         kept = ours is not None and (theirs is None or theirs - ours >= SAFE_MARGIN)
         met = path[(ours if kept else theirs or len(path)) - 1]

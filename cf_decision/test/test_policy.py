@@ -492,3 +492,12 @@ def test_a_pass_is_never_judged_received_beyond_the_touch_line():
     path = kicked_path(ball, target, pass_speed(math.dist(ball, target)))
     received = path[first_cycles(path, [Runner(wide)]) - 1]
     assert abs(received[1]) <= 34.0 and choice.gain < 10.0  # not a "forward pass" into touch
+
+
+def test_a_clearance_from_the_touch_line_is_never_kicked_straight_out():
+    # On the line with a team-mate beside the ball: the ways that cross the line at once are not "kept".
+    ball = (-30.0, 33.8)
+    players = [mate(5, -29.5, 33.4), opp(9, -25.0, 30.0)]
+    aim, _ = best_clearance(state((-30.5, 33.8), ball=ball, players=players), ball)
+    path = kicked_path(ball, aim, CLEAR_SPEED)
+    assert abs(path[0][1]) <= 34.0  # its first cycle stays in the field
