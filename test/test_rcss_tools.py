@@ -196,9 +196,10 @@ def test_the_opponents_a_decision_believed_are_set_against_the_game_logs_truth(t
 
 
 def players_at(where: dict, kicks_of: dict) -> str:
-    """A show line's players at (x, y), with their kick counters; r 1 is a goalkeeper (state 0x3)."""
+    """A show line's players at (x, y), with their kick counters; r 1 is a goalkeeper (state 0x9, as
+    rcssserver writes it: standing and goalie; 0x2 is a kick)."""
     return " ".join(
-        f"(({side} {n}) 0 {'0x3' if (side, n) == ('r', 1) else '0x1'} {x} {y} 0 0 0 0 (v h 120) (fp 0 0) "
+        f"(({side} {n}) 0 {'0x9' if (side, n) == ('r', 1) else '0x1'} {x} {y} 0 0 0 0 (v h 120) (fp 0 0) "
         f"(s 8000 1 1 130600) (c {kicks_of[(side, n)]} 0 0 0 0 0 0 0 0 0 0))"
         for (side, n), (x, y) in where.items()
     )

@@ -32,10 +32,10 @@ from rcss_ball_use import game, match_parser
 from rcss_series import kick_events
 
 from cf_decision import reach
+from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
 
 MIN_SPEED = 1.2  # m/cycle: slower touches are a dribble's pushes, not kicks to anybody
 HORIZON = reach.HORIZON  # a lead is at most this many cycles either way
-GOALIE = 0x2  # the game log's player state bit of a goalkeeper
 SET_OFF_RUN = 2.0  # m: a receiver nearer than this to the ball's path need not run
 SET_OFF_STEP = 0.4  # m in one cycle towards where he meets the ball: he is on his way
 SET_OFF_WITHIN = 8  # cycles after the kick looked at
