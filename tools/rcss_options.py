@@ -22,9 +22,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_ball_use import game, match_parser
-from rcss_series import kick_events
+from rcss_series import THIRD, kick_events
 
 from cf_decision import reach
+from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
 
 THIRDS = ("our third", "middle third", "their third")
 GAINS = ("none", "< 0 m", "0-10 m", "10-20 m", "20 m or more")
@@ -61,7 +62,7 @@ def bin_of(gain: float | None) -> str:
 
 def options(match: Path, team: str = "CF", speed: float = 2.7, margin: int = 2) -> Counter:
     """(third, gain bin) -> kicks of ours in play, in one match (x in our attack's direction)."""
-    frames, side, forward = game(match, team)
+    frames, side, forward = game(match, team, counters=True)  # the state bits tell the goalkeeper
     out: Counter = Counter()
     for i, s, number, _, _ in kick_events(frames):
         _, mode, (bx, by), players = frames[i]
@@ -69,8 +70,10 @@ def options(match: Path, team: str = "CF", speed: float = 2.7, margin: int = 2) 
             continue
         ball = (forward * bx, forward * by)
         mates = [(forward * p[2], forward * p[3]) for p in players if p[0] == side and p[1] != number]
-        opponents = [reach.Runner((forward * p[2], forward * p[3]), p[1] == 1) for p in players if p[0] != side]
-        third = THIRDS[0] if ball[0] < -17.5 else THIRDS[1] if ball[0] < 17.5 else THIRDS[2]
+        opponents = [
+            reach.Runner((forward * p[2], forward * p[3]), bool(p[6] & GOALIE)) for p in players if p[0] != side
+        ]
+        third = THIRDS[0] if ball[0] < -THIRD else THIRDS[1] if ball[0] < THIRD else THIRDS[2]
         out[(third, bin_of(best_gain(ball, mates, opponents, speed, margin)))] += 1
     return out
 

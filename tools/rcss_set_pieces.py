@@ -23,9 +23,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_ball_use import match_parser
-from rcss_series import read_rcg, side_of
+from rcss_series import THIRD, read_rcg, side_of
 
-THIRD_X = 52.5 / 3  # m: their third starts this far from the halfway line
 KINDS = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick", "indirect_free_kick")
 
 
@@ -90,7 +89,7 @@ def table(pieces: list[SetPiece], window: int) -> str:
             f"| {kind} | {len(ps)} | {statistics.median(p.speed for p in ps):.2f} "
             f"| {statistics.median(p.taker_gap for p in ps):.2f} "
             f"| {statistics.median(window if p.theirs_after is None else p.theirs_after for p in ps):g} "
-            f"| {statistics.median(p.furthest for p in ps):.1f} | {sum(p.furthest > THIRD_X for p in ps)} |"
+            f"| {statistics.median(p.furthest for p in ps):.1f} | {sum(p.furthest > THIRD for p in ps)} |"
         )
     return "\n".join(rows)
 
