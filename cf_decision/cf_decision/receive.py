@@ -9,6 +9,7 @@ lapsed: 3-4 cycles after the kick on rcssserver, where the real teams' receivers
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -20,6 +21,8 @@ from .situation import KICKABLE, Decision, dist, play_mode, sides, xy
 from .with_ball import CLEAR_SPEED
 
 AWAIT_MAX = 20  # cycles after its kick that a pass is awaited at most
+ROLLING = 0.5  # m/cycle: a ball seen this fast is on its way (a dribbler's touch is slower)
+SEEN_AGE = 1  # cycles: a ball seen this lately moves as it was seen to
 
 Point = tuple[float, float]
 
@@ -58,6 +61,19 @@ def pass_path(pass_: Announced, my_pos: Point) -> list[Point] | None:
     return reach.kicked_path(pass_.ball, target, speed)
 
 
+def rolling(state: WorldState) -> list[Point] | None:
+    """The ball's path as I see it now, if I saw it just now and it rolls at ROLLING or faster."""
+    ball = state.ball
+    if ball is None or ball.positioning is None or ball.velocity is None:
+        return None
+    if ball.age is not None and ball.age > SEEN_AGE:
+        return None
+    velocity = reach.per_cycle(ball.velocity)
+    if math.hypot(*velocity) < ROLLING:
+        return None
+    return reach.ball_path(xy(ball.positioning), velocity)
+
+
 def meeting(state: WorldState, number: int, passes: Sequence[Announced]) -> tuple[Point, int] | None:
     """Where I meet the latest pass a team-mate announced, and in how many cycles, if it is mine to meet.
 
@@ -80,6 +96,12 @@ def meeting(state: WorldState, number: int, passes: Sequence[Announced]) -> tupl
     if path is None or elapsed >= len(path):
         return None
     rest = path[max(0, elapsed) :]
+    seen = rolling(state) if elapsed > 0 else None
+    if seen is not None:
+        # Once I see it rolling, the ball goes where it was kicked, not where it was meant to go:
+        # receivers kept waiting on the pass's foreseen line 3 m from where the ball rolled by, and
+        # lost it (docs/performance.md, session 31).
+        rest = seen
     react = reach.TURN_CYCLES if elapsed <= 0 else 0  # once it rolls: on my way already
     mine = reach.cycles_to_path(me, rest, react=react, speed=reach.top_speed(state.me))
     if mine is None:

@@ -6,10 +6,11 @@ import math
 
 from test_policy import at, mate, state
 
+from cf_decision import reach
 from cf_decision.policy import decide
 from cf_decision.receive import AWAIT_MAX, Announced, meeting, to_announce
 from cf_decision.situation import Decision
-from cf_lang.ontology import Player, PlayMode, Team
+from cf_lang.ontology import Ball, Player, PlayMode, Team, Velocity
 from cf_lang.ontology import actions as act
 
 
@@ -70,3 +71,21 @@ def test_only_a_pass_in_play_with_the_ball_at_my_feet_is_told():
     assert not to_announce(state((0.0, 0.0), (0.5, 0.0), mode=PlayMode.FREE_KICK_OUR), a_pass)
     dribble = Decision("dribble", act.Dribble(target=at(10.0, 0.0)), "go")
     assert not to_announce(state((0.0, 0.0), (0.5, 0.0)), dribble)
+
+
+def test_once_the_ball_is_seen_rolling_the_pass_is_met_where_it_rolls_not_where_it_was_meant_to():
+    # Asked for along the x axis towards (0, 0); kicked 3 cycles ago, it rolls at a slant instead.
+    start, me = (-20.0, 0.0), (-8.0, 4.0)
+    passes = [Announced(4, act.Pass(target=at(0.0, 0.0)), start, 97)]
+    seen = (-14.0, 1.5)
+    st = state(me, seen, [mate(4, -20.5, 0.0)], number=6)
+    velocity = Velocity(vx=17.0, vy=5.0)  # m/s: 1.7 m and 0.5 m a cycle, rolling up and to my side
+    rolling_ball = st.model_copy(update={"ball": Ball(positioning=at(*seen), velocity=velocity, age=0)})
+    spot, _ = meeting(rolling_ball, 6, passes)
+    line = reach.ball_path(seen, (1.7, 0.5))
+    assert min(math.dist(spot, p) for p in line) < 0.01  # on the path it rolls
+    assert abs(spot[1]) > 1.5  # not on the line it was meant to take (y = 0)
+    # Seen only 3 cycles ago, the ball is taken to follow the pass as asked for.
+    stale = st.model_copy(update={"ball": Ball(positioning=at(*seen), velocity=velocity, age=3)})
+    old_spot, _ = meeting(stale, 6, passes)
+    assert abs(old_spot[1]) < 0.01
