@@ -29,7 +29,8 @@ What it does, in order:
   in our half to a team-mate up the field who gets it safely, else clear; in
   theirs towards the goal; the team-mate a pass was
   announced to (to a point: the first to reach its path) sets off at once to
-  where he meets it, and waits there facing the ball; in our half the second
+  where he meets it (once he sees it rolling: on the path it rolls), and waits
+  there facing the ball; in our half the second
   fastest stands in his way to our goal, facing the ball; any player within
   tackling reach of an opponent's ball goes for it; the others hold their
   formation position, shifted with the ball, facing the ball; while a team-mate
