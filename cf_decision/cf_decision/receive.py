@@ -79,7 +79,8 @@ def meeting(state: WorldState, number: int, passes: Sequence[Announced]) -> tupl
 
     Mine: passed to me, or, passed to a point, I am the team-mate who reaches its path first (as I
     believe: the passer left out, ties to the lower number). The ball is taken to roll from its
-    kick. None once it has rolled past my reach, or AWAIT_MAX cycles after its kick.
+    kick as the pass was asked for, and, once I have seen it rolling (:func:`rolling`), as I see
+    it. None once it has rolled past my reach, or AWAIT_MAX cycles after its kick.
     """
     if not passes or state.me is None or state.me.positioning is None:
         return None
