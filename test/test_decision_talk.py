@@ -58,6 +58,8 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
             "number:=2",
             "-p",
             "lease:=2.0",
+            "-p",
+            "log_requests:=true",
         ],
         "decision",
     )
@@ -127,6 +129,11 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
 
     meet = play(lambda t: world(t, here, ball, team_mates), meeting, "blue 2 to run to meet the pass")
     assert meet.target.x > here[0] - 10.0 and meet.speed == 100.0  # towards the ball, in a hurry
+    # With log_requests its log says what the run was chosen on: the pass heard, mate 4's claim.
+    logged = [line for line in procs.log("decision").splitlines() if "request t=" in line and "moveTo:" in line]
+    run = [line for line in logged if " | passes 4>2@" in line]
+    assert run and " | claims 4:0 | " in run[0], logged[-3:]
+    assert " | (exec Player moveTo :playerNumber 2 :whichTeam our " in run[0], run[0]
 
     # Bad words from a team-mate are dropped, and blue 2 plays on.
     for content, user in (

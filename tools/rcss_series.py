@@ -3,6 +3,7 @@
     python tools/rcss_series.py --server $RCSSSERVER --opponent PYRUS \\
         --opponent-cmd "bash -c 'cd /path/to/Pyrus2D && ./start.sh -t {team} --disable-file-log'" \\
         [--matches 5] [--cycles 2000] [--realtime] [--seed 0] [--out DIR] [--kick-off referee|trainer] [--no-coach]
+        [--log-requests]
 
 Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode unless
 --realtime; two halves; our 11 players against the opponent's, started with its own
@@ -237,6 +238,8 @@ def play(args: argparse.Namespace, n: int) -> dict:
         argv.append("--realtime")
     if args.no_coach:
         argv.append("--no-coach")
+    if args.log_requests:
+        argv.append("--log-requests")
     t0 = time.monotonic()
     done = subprocess.run(argv, capture_output=True, text=True, timeout=args.timeout + 300)
     try:
@@ -347,6 +350,7 @@ def main() -> int:
         help="rcss_match --kick-off: referee (heterogeneous player types, as in a competition) or trainer",
     )
     ap.add_argument("--no-coach", action="store_true", help="our team without its coach")
+    ap.add_argument("--log-requests", action="store_true", help="our decisions log every new request")
     args = ap.parse_args()
     if args.again:
         return again(Path(args.again), args.team)

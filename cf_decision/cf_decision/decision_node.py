@@ -38,7 +38,7 @@ from cf_lang.sexp import dumps
 
 from .policy import decide
 from .receive import Announced, to_announce
-from .requests import ActionRequests, aim_text
+from .requests import ActionRequests, aim_text, request_text
 from .set_piece import KICKING, SetPieceTaker
 from .situation import Decision, xy
 from .without_ball import NEVER, state_eta
@@ -49,6 +49,9 @@ class DecisionParams(ComponentParams):
     number: int = Field(1, ge=1, le=11, description="shirt number")
     team_size: int = Field(11, ge=1, le=11, description="players in the team (for the formation)")
     standby: bool = Field(False, description="act only when no other decision component of this player is alive")
+    log_requests: bool = Field(
+        False, description="log every new request with what it was chosen on (me, ball, claims, passes heard)"
+    )
 
 
 PERCEPTION_SILENCE = 1.0  # seconds without an inform before the perception provider is replaced
@@ -70,6 +73,7 @@ class DecisionNode(GuardedNode, Node):
         super().__init__(node_name, **kwargs)
         p = DecisionParams.declare_and_read(self)
         self.team, self.number, self.team_size, self.standby = p.team, p.number, p.team_size, p.standby
+        self.log_requests = p.log_requests
         name = _agent_name(p.model_dump())
         self.agent = Agent(
             self,
@@ -152,6 +156,9 @@ class DecisionNode(GuardedNode, Node):
                 # One line per new way of playing the ball: what a match analysis needs, a few a minute.
                 self.requests.stats.chose(decision.why)
                 self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}{aim_text(state, decision)}")
+            if self.log_requests:
+                passes = list(self.passes.values())
+                self.get_logger().info(request_text(state, decision, claims, passes, self._exec(decision)))
             self._request(decision)
         if to_announce(state, decision):  # every cycle until it is kicked: the kick is due the next
             self._tell_mates(self._exec(decision))

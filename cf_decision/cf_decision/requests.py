@@ -18,6 +18,7 @@ from pydantic import BaseModel
 
 from cf_lang.ontology import AbsolutePositioning, Team, WorldState
 
+from .receive import AWAIT_MAX, Announced
 from .situation import Decision, dist, xy
 
 POSITION_TOLERANCE = 1.0  # m: targets closer than this are one target (a player is ~0.6 m wide)
@@ -127,3 +128,36 @@ def aim_text(state: WorldState, decision: Decision) -> str:
         if p.which_team is Team.OPP and p.positioning and dist(xy(p.positioning), xy(ball)) <= AIM_OPPONENTS_WITHIN
     ]
     return f" @ target {target.x:.1f} {target.y:.1f} ball {ball.x:.1f} {ball.y:.1f} opp {', '.join(seen)}"
+
+
+def request_text(
+    state: WorldState, decision: Decision, claims: dict[int, int], passes: list[Announced], content: str
+) -> str:
+    """One line for a new request (``log_requests``): ``request t=T method: why | me X Y | ball X Y
+    v VX VY age A | claims N:ETA ... | passes P>R@T ... | (exec ...)``.
+
+    Everything the choice was made on that a match analysis cannot read back from the game log:
+    where the player believed himself and the ball, the team-mates' claims on the ball (``N:ETA``,
+    cycles) and the passes they announced that may still be awaited (to team-mate R, or ``pt`` for a point; ``@T``: the
+    cycle the ball is taken to leave the foot), then the very request sent.
+    """
+    me = state.me.positioning if state.me else None
+    ball = state.ball
+    parts = [f"request t={state.time} {decision.method}: {decision.why}"]
+    parts.append(f"me {me.x:.1f} {me.y:.1f}" if me else "me ?")
+    if ball is not None and ball.positioning is not None:
+        v = ball.velocity
+        speed = f" v {v.vx:.1f} {v.vy:.1f}" if v else ""
+        parts.append(f"ball {ball.positioning.x:.1f} {ball.positioning.y:.1f}{speed} age {ball.age or 0}")
+    else:
+        parts.append("ball ?")
+    parts.append("claims " + " ".join(f"{n}:{eta}" for n, eta in sorted(claims.items())))
+    recent = [a for a in passes if state.time - a.kicked <= AWAIT_MAX]
+    parts.append("passes " + " ".join(f"{a.passer}>{_receiver(a)}@{a.kicked}" for a in recent))
+    parts.append(content)
+    return " | ".join(parts)
+
+
+def _receiver(announced: Announced) -> str:
+    to = announced.action.to
+    return str(to.player_number) if to is not None else "pt"

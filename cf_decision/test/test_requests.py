@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from cf_decision.requests import ActionRequests, RequestStats, aim_text, same_action
+from cf_decision.receive import Announced
+from cf_decision.requests import ActionRequests, RequestStats, aim_text, request_text, same_action
 from cf_decision.situation import Decision
-from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, Team, WorldState
+from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, Team, Velocity, WorldState
 from cf_lang.ontology import actions as act
 
 
@@ -73,3 +74,24 @@ def test_the_log_line_of_a_kick_carries_its_aim_and_the_ball_and_opponents_as_be
     assert aim_text(state, clear) == " @ target -12.0 25.0 ball -35.2 4.1 opp -30.0 2.0 0.4, -20.0 -10.0 3.3"
     assert aim_text(state, Decision("intercept", act.Intercept(), "fastest")) == ""  # no target point
     assert aim_text(WorldState(time=5, game=Game(time=5)), clear) == ""  # no ball believed
+
+
+def test_a_logged_request_tells_what_it_was_chosen_on():
+    me = Player(player_number=7, which_team=Team.OUR, positioning=AbsolutePositioning(x=-10.04, y=3.0))
+    ball = Ball(positioning=AbsolutePositioning(x=-12.0, y=2.5), velocity=Velocity(vx=8.0, vy=-1.0), age=1)
+    state = WorldState(time=40, me=me, ball=ball, game=Game(time=40))
+    to_me = act.Pass(to=Player(player_number=7, which_team=Team.OUR))
+    to_point = act.Pass(target=AbsolutePositioning(x=5.0, y=5.0))
+    passes = [
+        Announced(4, to_me, AbsolutePositioning(x=-20.0, y=0.0), 31),
+        Announced(6, to_point, AbsolutePositioning(x=-5.0, y=0.0), 35),
+        Announced(2, to_me, AbsolutePositioning(x=-30.0, y=0.0), 12),  # long rolled past: not awaited
+    ]
+    run = Decision("moveTo", move(-11.0, 2.0, 100.0), "meet the pass")
+    line = request_text(state, run, {9: 3, 4: 12}, passes, "(exec Player moveTo ...)")
+    assert line == (
+        "request t=40 moveTo: meet the pass | me -10.0 3.0 | ball -12.0 2.5 v 8.0 -1.0 age 1"
+        " | claims 4:12 9:3 | passes 4>7@31 6>pt@35 | (exec Player moveTo ...)"
+    )
+    blind = request_text(WorldState(time=3, game=Game(time=3)), run, {}, [], "(exec)")
+    assert blind == "request t=3 moveTo: meet the pass | me ? | ball ? | claims  | passes  | (exec)"

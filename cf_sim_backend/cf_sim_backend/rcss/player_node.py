@@ -64,6 +64,7 @@ class RcssPlayerParams(ComponentParams):
     stats_file: str = Field("", description="write the session's counters (JSON) here every 50 cycles and at exit")
     decision: bool = Field(False, description="host this player's decision component in this process too")
     team_size: int = Field(11, ge=1, le=11, description="players in the team (for the hosted decision's formation)")
+    log_requests: bool = Field(False, description="the hosted decision logs every new request (its log_requests)")
 
 
 class RcssPlayerNode(GuardedNode, Node):
@@ -215,7 +216,7 @@ class RcssPlayerNode(GuardedNode, Node):
 
         b = self.session.belief
         values = {"team": self.session.team, "number": b.number, "team_size": int(self.p.team_size)}
-        values |= {"commag": self.p.commag, "lease": float(self.p.lease)}
+        values |= {"commag": self.p.commag, "lease": float(self.p.lease), "log_requests": bool(self.p.log_requests)}
         node = DecisionNode(
             host=host,
             launch=launch,
