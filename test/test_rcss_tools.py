@@ -9,6 +9,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from rcss_ball_use import ball_use, reason, table, territory, territory_table
+from rcss_goals import goal_rows, goals, summary
 from rcss_options import best_gain, bin_of, options
 from rcss_options import table as options_table
 from rcss_picture import picture
@@ -290,3 +291,48 @@ def test_the_truth_of_each_kick_says_how_far_up_a_ball_reached_a_team_mate_first
     ring = [reach.Runner((3.0 * math.cos(k * math.pi / 6), 3.0 * math.sin(k * math.pi / 6))) for k in range(12)]
     assert best_gain((0.0, 0.0), [(25.0, 0.0)], ring, 2.7, 2) is None and bin_of(None) == "none"
     assert bin_of(-3.0) == "< 0 m" and bin_of(12.0) == "10-20 m"
+
+
+def goals_match(tmp: Path) -> Path:
+    """CF (left) scores from 8 m after winning the ball in PYRUS's third; PYRUS scores from its kick-off,
+    the shot touched by CF 2 on its way in. Each goalkeeper flagged as one (state 0x9)."""
+    at = {("l", 1): (-50.0, 0.0), ("l", 2): (-45.0, 0.0), ("l", 9): (40.0, 5.0), ("l", 10): (0.0, 0.0)}
+    at |= {("r", 1): (51.0, 0.0), ("r", 4): (35.0, 0.0), ("r", 9): (-38.0, -2.0)}
+    kicks = dict.fromkeys(at, 0)
+    ball = {t: (float(t) * 3.0, 0.0) for t in range(1, 40)}
+    ball |= {9: (40.0, 5.0), 11: (45.0, 3.0), 21: (0.0, 0.0), 24: (-40.0, -2.0)}
+    touches = {3: ("l", 10), 6: ("l", 9), 8: ("r", 4), 10: ("l", 9), 12: ("l", 9)}
+    touches |= {22: ("r", 9), 25: ("r", 9), 27: ("l", 2)}
+    modes = {1: "kick_off_l", 3: "play_on", 15: "goal_l", 20: "kick_off_r", 22: "play_on", 29: "goal_r"}
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)"]
+    for t in range(1, 32):
+        if t in modes:
+            lines.append(f"(playmode {t} {modes[t]})")
+        if t in touches:
+            kicks[touches[t]] += 1
+        players = " ".join(
+            f"(({side} {n}) 0 {'0x9' if n == 1 else '0x1'} {x} {y} 0 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) "
+            f"(c {kicks[(side, n)]} 0 0 0 0 0 0 0 0 0 0))"
+            for (side, n), (x, y) in at.items()
+        )
+        lines.append(f"(show {t} ((b) {ball[t][0]} {ball[t][1]} 0 0) {players})")
+    match = tmp / "match-1"
+    match.mkdir()
+    (match / "m.rcg").write_text("\n".join(lines) + "\n")
+    return match
+
+
+def test_each_goal_is_put_down_to_its_shot_the_keeper_and_how_the_move_began(tmp_path):
+    ours, theirs = goals(goals_match(tmp_path))
+    assert (ours.ours, ours.time, ours.scorer, ours.shot, ours.touched) == (True, 15, 9, (45.0, 3.0), "")
+    assert math.isclose(ours.distance, math.hypot(7.5, 3.0)) and math.isclose(ours.keeper_off, 1.5)
+    # CF lost the ball at t=8 and won it back at (40, 5): two kicks, 6 cycles to the goal.
+    assert (ours.kicks, ours.cycles, ours.began) == (2, 6, "won in the attacking third")
+    # PYRUS's frame: x towards CF's goal. Its move began with its kick-off; CF 2 touched the shot.
+    assert (theirs.ours, theirs.scorer, theirs.shot, theirs.touched) == (False, 9, (40.0, 2.0), "2")
+    assert math.isclose(theirs.distance, math.hypot(12.5, 2.0)) and math.isclose(theirs.keeper_off, 2.5)
+    assert (theirs.kicks, theirs.cycles, theirs.began) == (2, 8, "kick_off")
+    assert "| 15 | us | 9 | 45.0, 3.0 | 8.1 | - | 1.5 | 2 | 6 |" in goal_rows([ours])
+    text = summary([ours, theirs])
+    assert "| for us | 1 | 1 | 0 | 0 | 0 | 1 | 0 | 0 | 2 | 6 |" in text
+    assert "| against us | 1 | 0 | 1 | 0 | 1 | 0 | 0 | 0 | 2 | 8 |" in text
