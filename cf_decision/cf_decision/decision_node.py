@@ -41,6 +41,7 @@ from .receive import Announced, to_announce
 from .requests import ActionRequests, aim_text, request_text
 from .set_piece import KICKING, SetPieceTaker
 from .situation import Decision, xy
+from .touch import LastTouch
 from .without_ball import NEVER, state_eta
 
 
@@ -95,6 +96,7 @@ class DecisionNode(GuardedNode, Node):
         self.last_inform = 0.0
         self.requests = ActionRequests()
         self.taker = SetPieceTaker()  # the rules forbid our set piece's taker a second touch
+        self.touch = LastTouch()  # which side touched the ball last: the keeper may not catch our back pass
         self.create_timer(0.2, self._watch_providers)
         self.last_time: int | None = None  # the game time of the last perception
         self.create_timer(30.0, self.log_stats)
@@ -148,7 +150,11 @@ class DecisionNode(GuardedNode, Node):
         now = time.monotonic()
         claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
         may_touch = self.taker.may_touch(state)
-        decision = decide(state, self.number, self.team_size, claims, may_touch, list(self.passes.values()))
+        self.touch.seen(state)
+        mate_touched = self.touch.team is Team.OUR
+        decision = decide(
+            state, self.number, self.team_size, claims, may_touch, list(self.passes.values()), mate_touched
+        )
         self.taker.decided(state, decision)
         self._announce(state, may_touch)
         if self.requests.wants(decision.method, decision.action):
@@ -215,6 +221,7 @@ class DecisionNode(GuardedNode, Node):
             if expr.method == "pass" and isinstance(expr.action, act.Pass):
                 if self.last_ball is not None and self.last_time is not None:
                     self.passes[number] = Announced(number, expr.action, self.last_ball, self.last_time + 1)
+                    self.touch.played_by_mate()
                 return
             self.claims[number] = (int(dict(msg.user)["X-eta"]), time.monotonic())
         except (LanguageError, AttributeError, KeyError, TypeError, ValueError):

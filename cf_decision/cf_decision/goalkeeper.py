@@ -4,31 +4,39 @@ from __future__ import annotations
 
 import math
 
-from cf_lang.ontology import FIELD, WorldState
+from cf_lang.ontology import PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
-from .situation import FIELD_HALF_LENGTH, KICKABLE, OWN_GOAL, Decision, dist, opponent_on_ball, point
-from .with_ball import best_clearance
+from .set_piece import OUR_SET_PIECES
+from .situation import KICKABLE, OWN_GOAL, Decision, dist, opponent_on_ball, play_mode, point, xy
+from .with_ball import best_clearance, in_our_box, set_piece_kick
 
 KEEPER_OUT_SHARE = 0.25  # the goalkeeper stands this share of the ball's distance out of his goal,
 KEEPER_OUT_MAX = 6.0  # m: at most this far
 RUSH_DISTANCE = 14.0  # m from our goal: an opponent with the ball this close is closed down by the keeper
+CATCH_REACH = 1.2  # m: rcssserver's catchable_area_l
+MATE_NEAR = 3.0  # m: a team-mate this close to the ball, and nearer than any opponent, may have played it
 
 
-def goalkeeper(state: WorldState, me: tuple[float, float], ball: tuple[float, float] | None) -> Decision:
-    """The goalkeeper's action, with the ball where he believes it (None: not seen)."""
+def goalkeeper(
+    state: WorldState, me: tuple[float, float], ball: tuple[float, float] | None, mate_touched: bool = False
+) -> Decision:
+    """The goalkeeper's action, with the ball where he believes it (None: not seen); ``mate_touched``:
+    a team-mate touched it last, as far as he can tell (:mod:`touch`)."""
     if ball is not None:
         d = dist(me, ball)
-        in_area = (
-            ball[0] < -FIELD_HALF_LENGTH + FIELD.penalty_area_length and abs(ball[1]) < FIELD.penalty_area_width / 2
-        )
+        in_area = in_our_box(ball)
+        mode = play_mode(state)
+        may_catch = in_area and mode is PlayMode.PLAY_ON and not mate_touched and not mates_ball(state, ball)
+        if may_catch and d <= CATCH_REACH:
+            # Caught, the ball is ours at a free kick; cleared in a hurry under pressure, it was lost:
+            # 9 of HELIOS base's 47 goals in seven matches followed (docs/performance.md, session 32).
+            return catch(state, me, ball)
         if d <= KICKABLE:
+            if mode in OUR_SET_PIECES:  # after a catch, or a goal kick: look, then pass or kick long
+                return set_piece_kick(state, me)
             aim, _ = best_clearance(state, ball)
             return Decision("pass", act.Pass(target=point(*aim), power=100.0), "clear the ball")
-        if in_area and d <= 1.2:
-            direction = math.atan2(ball[1] - me[1], ball[0] - me[0]) - (state.me.positioning.yaw or 0.0)
-            direction = math.atan2(math.sin(direction), math.cos(direction))
-            return Decision("catch", act.Catch(direction=direction), "ball in reach")
         to_goal = dist(ball, OWN_GOAL)
         if in_area and d < 8.0:
             return Decision("intercept", act.Intercept(), "ball in the penalty area")
@@ -45,3 +53,20 @@ def goalkeeper(state: WorldState, me: tuple[float, float], ball: tuple[float, fl
     if dist(me, spot) > 1.0:
         return Decision("moveTo", act.MoveTo(target=point(*spot), speed=80.0), "guard the goal")
     return Decision("turnToDirection", act.TurnToDirection(direction=0.0), "face the field")
+
+
+def catch(state: WorldState, me: tuple[float, float], ball: tuple[float, float]) -> Decision:
+    """Catch the ball, turned towards it as the body faces."""
+    direction = math.atan2(ball[1] - me[1], ball[0] - me[0]) - (state.me.positioning.yaw or 0.0)
+    direction = math.atan2(math.sin(direction), math.cos(direction))
+    return Decision("catch", act.Catch(direction=direction), "ball in reach")
+
+
+def mates_ball(state: WorldState, ball: tuple[float, float]) -> bool:
+    """A team-mate may have played the ball last: he is within MATE_NEAR of it and nearer than any
+    opponent. The keeper may not catch a ball a team-mate kicked to him (rcssserver's back_pass:
+    an indirect free kick to the opponents in our penalty area)."""
+    mates = [dist(xy(p.positioning), ball) for p in state.players if p.which_team is Team.OUR and p.positioning]
+    theirs = [dist(xy(p.positioning), ball) for p in state.players if p.which_team is Team.OPP and p.positioning]
+    nearest = min(mates, default=MATE_NEAR + 1.0)
+    return nearest <= MATE_NEAR and nearest < min(theirs, default=1e9)

@@ -8,9 +8,11 @@ team-mates said (who goes for the ball). Output is an ontology action for
 What it does, in order:
 - before a kick-off: take the kick-off position (the formation, wide forwards
   out wide), and keep it at our kick-off until the ball is played;
-- goalkeeper: catch a ball in reach, clear a kickable ball, close down an
-  opponent through on goal, else guard the goal on the line between ball and
-  goal centre, further out the further the ball;
+- goalkeeper: catch a ball in reach in his area unless a team-mate touched it
+  last (a back pass), take the free kick that follows as a set piece, else
+  clear a kickable ball, close down an opponent through on goal, else guard
+  the goal on the line between ball and goal centre, further out the further
+  the ball;
 - with the ball: shoot when close enough with a free line, else pass to the
   best open team-mate ahead, else carry it at full speed on an open run; else,
   in our half, a safe pass losing at most 3 m, received outside our penalty
@@ -91,11 +93,13 @@ def decide(
     claims: dict[int, int],
     may_touch: bool = True,
     passes: Sequence[Announced] = (),
+    mate_touched: bool = False,
 ) -> Decision:
     """The action for player ``number`` now. ``claims``: team-mates' announced times to the ball;
     ``passes``: the passes team-mates announced lately.
 
     ``may_touch`` False: this player took our set piece and nobody else has touched the ball yet.
+    ``mate_touched``: a team-mate touched the ball last (the goalkeeper may not catch it).
     """
     me_pos = xy(state.me.positioning) if state.me else None
     if me_pos is None:
@@ -114,7 +118,7 @@ def decide(
         x, y = home_position(number, team_size, ball_x=ball[0])  # their set piece: keep shape
         return hold(me_pos, (x, y), "their set piece: keep shape")
     if role is Role.GOALKEEPER and may_touch:
-        return goalkeeper(state, me_pos, ball)
+        return goalkeeper(state, me_pos, ball, mate_touched)
     if dist(me_pos, ball) <= KICKABLE and may_touch:
         return with_ball(state, number, me_pos)
     my_eta = cycles_to_ball(me_pos, ball, state.ball.velocity, top_speed(state.me))

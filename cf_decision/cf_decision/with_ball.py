@@ -164,12 +164,17 @@ def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1
             if spare < SAFE_MARGIN:
                 continue
             received = path[ours - 1]
-            if received[0] - ball[0] < min_gain:
-                continue
+            if received[0] - ball[0] < min_gain or in_our_box(received):
+                continue  # (in our area the keeper would take it: a back pass he may not catch)
             score = received[0] + 0.5 * min(spare, 6) - 0.3 * abs(received[1]) * (received[0] > 30.0)
             if score > best_score:
                 best, best_score = PassChoice(number, target if lead else None, received[0] - ball[0]), score
     return best
+
+
+def in_our_box(at: tuple[float, float]) -> bool:
+    """In our penalty area."""
+    return at[0] < -FIELD_HALF_LENGTH + FIELD.penalty_area_length and abs(at[1]) < FIELD.penalty_area_width / 2
 
 
 def space_ahead(

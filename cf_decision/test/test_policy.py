@@ -189,10 +189,26 @@ def test_at_our_kick_off_the_wide_forwards_wait_out_wide_and_the_pass_finds_one_
 
 def test_goalkeeper_guards_catches_clears():
     keeper = dict(number=1)
-    d = decide(state((-50.0, 0.0), ball=(-49.2, 0.3), **keeper), 1, 11, {})
-    assert d.method == "pass"  # kickable: clear it
+    pressed = [opp(9, -46.0, 2.0), mate(3, -40.0, 0.0)]
+    d = decide(state((-50.0, 0.0), ball=(-49.2, 0.3), players=pressed, **keeper), 1, 11, {})
+    assert d.method == "catch"  # in his area, from an opponent: caught, the ball is ours at a free kick
     d = decide(state((-50.0, 0.0), ball=(-48.9, 0.0), **keeper), 1, 11, {})
     assert d.method == "catch"
+    # A team-mate nearer the ball than any opponent may have played it to him: no catch (a back
+    # pass), clear it.
+    back = [opp(9, -40.0, 2.0), mate(3, -47.0, 0.0)]
+    d = decide(state((-50.0, 0.0), ball=(-49.2, 0.3), players=back, **keeper), 1, 11, {})
+    assert d.method == "pass" and d.why == "clear the ball"
+    # ... nor when he believes a team-mate touched it last, whoever is near it now.
+    d = decide(state((-50.0, 0.0), ball=(-49.2, 0.3), players=pressed, **keeper), 1, 11, {}, mate_touched=True)
+    assert d.method == "pass" and d.why == "clear the ball"
+    # Out of his area he kicks, never catches.
+    d = decide(state((-34.0, 0.0), ball=(-33.5, 0.3), players=pressed, **keeper), 1, 11, {})
+    assert d.method == "pass"
+    # The ball caught, the free kick is ours: he takes it as a set piece (a safe pass to a team-mate).
+    free = [mate(3, -38.0, 15.0), opp(9, -40.0, -8.0)]
+    d = decide(state((-49.0, 0.0), ball=(-48.5, 0.0), players=free, mode=PlayMode.FREE_KICK_OUR, **keeper), 1, 11, {})
+    assert d.method == "pass" and d.why == "set piece to team-mate 3"
     d = decide(state((-40.0, 10.0), ball=(20.0, 0.0), **keeper), 1, 11, {})
     assert d.method == "moveTo" and d.action.target.x < -46  # far ball: a few metres out, in the middle
     near = decide(state((-51.0, 0.0), ball=(-35.0, 10.0), **keeper), 1, 11, {})
@@ -476,7 +492,8 @@ def test_in_our_half_a_safe_pass_that_loses_little_ground_comes_before_a_clearan
     d = decide(state((-30.0, -5.0), ball=(-29.5, -5.0), players=beside), 4, 11, {})
     assert d.method == "pass" and d.why == "keep it: safe pass to team-mate 6"
     in_our_box = state((-38.0, -5.0), ball=(-37.5, -5.0), players=[mate(3, -42.0, 6.0), opp(9, -28.0, -2.0)])
-    assert best_pass(in_our_box, (-37.5, -5.0)) is not None  # safe, but received in our penalty area
+    # Safe, but received in our penalty area: never offered (the keeper there may not catch a back pass).
+    assert best_pass(in_our_box, (-37.5, -5.0)) is None
     d = decide(in_our_box, 4, 11, {})
     assert d.method == "pass" and d.why == "clear the ball"
 

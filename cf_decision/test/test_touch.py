@@ -1,0 +1,40 @@
+"""Which side touched the ball last, as a player can tell."""
+
+from __future__ import annotations
+
+from cf_decision.touch import LastTouch
+from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, Team, WorldState
+
+
+def seen(ball, players, ball_age=0):
+    return WorldState(
+        time=10,
+        ball=Ball(positioning=AbsolutePositioning(x=ball[0], y=ball[1]), age=ball_age),
+        players=tuple(
+            Player(player_number=n, which_team=team, positioning=AbsolutePositioning(x=x, y=y), age=age)
+            for n, team, x, y, age in players
+        ),
+        game=Game(time=10),
+    )
+
+
+def test_the_side_whose_men_alone_are_at_the_ball_touched_it_last():
+    touch = LastTouch()
+    assert touch.team is None
+    touch.seen(seen((-39.0, 1.0), [(4, Team.OUR, -39.4, 1.0, 0), (11, Team.OPP, -36.0, 1.0, 0)]))
+    assert touch.team is Team.OUR  # our defender at the ball, their forward 3 m off
+    touch.seen(seen((-45.0, 1.0), [(4, Team.OUR, -38.0, 1.0, 0)]))
+    assert touch.team is Team.OUR  # rolling on towards our goal, nobody at it: still ours
+    touch.seen(seen((-44.0, 1.0), [(4, Team.OUR, -43.5, 1.0, 0), (9, Team.OPP, -44.5, 1.0, 0)]))
+    assert touch.team is Team.OUR  # both sides as near: cannot tell, the last known stands
+    touch.seen(seen((-44.0, 1.0), [(4, Team.OUR, -43.0, 1.0, 0), (9, Team.OPP, -44.7, 1.0, 0)]))
+    assert touch.team is Team.OPP  # both at it, theirs clearly nearer: his
+    touch.played_by_mate()
+    touch.seen(seen((-44.0, 1.0), [(9, Team.OPP, -44.5, 1.0, 3)]))
+    assert touch.team is Team.OUR  # an opponent seen 3 cycles ago does not count
+    touch.seen(seen((-44.0, 1.0), [(9, Team.OPP, -44.5, 1.0, 0)], ball_age=4))
+    assert touch.team is Team.OUR  # nor does a ball not seen lately
+    touch.seen(seen((-44.0, 1.0), [(9, Team.OPP, -44.5, 1.0, 1)]))
+    assert touch.team is Team.OPP
+    touch.played_by_mate()  # a team-mate announced his pass
+    assert touch.team is Team.OUR
