@@ -152,9 +152,8 @@ class DecisionNode(GuardedNode, Node):
         may_touch = self.taker.may_touch(state)
         self.touch.seen(state)
         mate_touched = self.touch.team is Team.OUR
-        decision = decide(
-            state, self.number, self.team_size, claims, may_touch, list(self.passes.values()), mate_touched
-        )
+        passes = list(self.passes.values())
+        decision = decide(state, self.number, self.team_size, claims, may_touch, passes, mate_touched)
         self.taker.decided(state, decision)
         self._announce(state, may_touch)
         if self.requests.wants(decision.method, decision.action):
@@ -163,7 +162,6 @@ class DecisionNode(GuardedNode, Node):
                 self.requests.stats.chose(decision.why)
                 self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}{aim_text(state, decision)}")
             if self.log_requests:
-                passes = list(self.passes.values())
                 self.get_logger().info(request_text(state, decision, claims, passes, self._exec(decision)))
             self._request(decision)
         if to_announce(state, decision):  # every cycle until it is kicked: the kick is due the next

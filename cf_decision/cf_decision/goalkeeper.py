@@ -8,7 +8,7 @@ from cf_lang.ontology import PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
 from .set_piece import OUR_SET_PIECES
-from .situation import KICKABLE, OWN_GOAL, Decision, dist, opponent_on_ball, play_mode, point, xy
+from .situation import KICKABLE, OWN_GOAL, Decision, dist, nearest_of_each_side, opponent_on_ball, play_mode, point
 from .with_ball import best_clearance, in_our_box, set_piece_kick
 
 KEEPER_OUT_SHARE = 0.25  # the goalkeeper stands this share of the ball's distance out of his goal,
@@ -66,7 +66,6 @@ def mates_ball(state: WorldState, ball: tuple[float, float]) -> bool:
     """A team-mate may have played the ball last: he is within MATE_NEAR of it and nearer than any
     opponent. The keeper may not catch a ball a team-mate kicked to him (rcssserver's back_pass:
     an indirect free kick to the opponents in our penalty area)."""
-    mates = [dist(xy(p.positioning), ball) for p in state.players if p.which_team is Team.OUR and p.positioning]
-    theirs = [dist(xy(p.positioning), ball) for p in state.players if p.which_team is Team.OPP and p.positioning]
-    nearest = min(mates, default=MATE_NEAR + 1.0)
-    return nearest <= MATE_NEAR and nearest < min(theirs, default=1e9)
+    nearest = nearest_of_each_side(state, ball)
+    mate = nearest.get(Team.OUR, math.inf)
+    return mate <= MATE_NEAR and mate < nearest.get(Team.OPP, math.inf)

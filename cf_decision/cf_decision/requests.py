@@ -138,8 +138,8 @@ def request_text(
 
     Everything the choice was made on that a match analysis cannot read back from the game log:
     where the player believed himself and the ball, the team-mates' claims on the ball (``N:ETA``,
-    cycles) and the passes they announced that may still be awaited (to team-mate R, or ``pt`` for a point; ``@T``: the
-    cycle the ball is taken to leave the foot), then the very request sent.
+    cycles) and the passes they announced that may still be awaited (to team-mate R, or ``pt`` for
+    a point; ``@T``: the cycle the ball is taken to leave the foot), then the very request sent.
     """
     me = state.me.positioning if state.me else None
     ball = state.ball

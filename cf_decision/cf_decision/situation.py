@@ -75,6 +75,17 @@ def sides(state: WorldState) -> tuple[list[tuple[int, Runner]], list[Runner]]:
     return mates, opponents
 
 
+def nearest_of_each_side(state: WorldState, at: tuple[float, float], fresh: int | None = None) -> dict[Team, float]:
+    """How far each side's nearest player is from ``at`` (only those seen within ``fresh`` cycles, if given)."""
+    nearest: dict[Team, float] = {}
+    for p in state.players:
+        if p.positioning is None or p.which_team is None or (fresh is not None and (p.age or 0) > fresh):
+            continue
+        d = dist(xy(p.positioning), at)
+        nearest[p.which_team] = min(d, nearest.get(p.which_team, d))
+    return nearest
+
+
 def opponent_on_ball(state: WorldState, ball: tuple[float, float]) -> bool:
     """An opponent has the ball at his feet (within 2 m)."""
     return any(

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from cf_lang.ontology import Team, WorldState
 
-from .situation import dist, xy
+from .situation import nearest_of_each_side, xy
 
 TOUCH = 1.5  # m: a player this close to the ball may have touched it
 FRESH = 1  # cycles: only players (and a ball) seen this lately count
@@ -29,13 +29,8 @@ class LastTouch:
         ball = state.ball
         if ball is None or ball.positioning is None or (ball.age or 0) > FRESH:
             return
-        nearest: dict[Team, float] = {}
-        for p in state.players:
-            if p.positioning is None or (p.age or 0) > FRESH or p.which_team is None:
-                continue
-            d = dist(xy(p.positioning), xy(ball.positioning))
-            if d <= TOUCH:
-                nearest[p.which_team] = min(d, nearest.get(p.which_team, d))
+        near = nearest_of_each_side(state, xy(ball.positioning), FRESH)
+        nearest = {team: d for team, d in near.items() if d <= TOUCH}
         if len(nearest) == 1:
             self.team = next(iter(nearest))
         elif len(nearest) == 2:
