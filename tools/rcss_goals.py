@@ -30,9 +30,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_ball_use import game, match_parser
-from rcss_series import GOAL_X, THIRD, kick_events
+from rcss_series import GOAL_X, kick_events, third_of
 
 GOALIE = 0x8  # a player's state bit in the game log: he is his team's goalkeeper
+THIRDS = ("own", "middle", "attacking")  # seen from the side whose frame x is in
 NEAR, BOX = 11.0, 16.5  # m from the goal's centre: about the penalty spot; the penalty area's depth
 
 
@@ -49,11 +50,6 @@ class Goal:
     kicks: int  # the scorers' kicks in the move, the shot included
     cycles: int  # from the move's first kick to the goal
     began: str  # a set piece's play mode, or "won in the own/middle/attacking third"
-
-
-def third(x: float) -> str:
-    """The third of the field of x in a side's own frame (x towards the goal it attacks)."""
-    return "own" if x < -THIRD else "middle" if x <= THIRD else "attacking"
 
 
 def goals(match: Path, team: str = "CF") -> list[Goal]:
@@ -96,7 +92,7 @@ def _goal(name: str, frames: list, at: int, kicks: list, side: str, our_side: st
     first = max(1, move[0][0])
     start_mode = frames[first - 1][1]
     if start_mode == "play_on":
-        began = f"won in the {third(fwd * frames[first - 1][2][0])} third"
+        began = f"won in the {THIRDS[third_of(fwd * frames[first - 1][2][0])]} third"
     else:
         began = start_mode.removesuffix(f"_{side}")
     return Goal(
@@ -144,7 +140,7 @@ def summary(found: list[Goal]) -> str:
             continue
         near = sum(g.distance < NEAR for g in gs)
         far = sum(g.distance > BOX for g in gs)
-        won = [sum(g.began == f"won in the {t} third" for g in gs) for t in ("attacking", "middle", "own")]
+        won = [sum(g.began == f"won in the {t} third" for g in gs) for t in reversed(THIRDS)]
         set_piece = len(gs) - sum(won)
         rows.append(
             f"| {label} | {len(gs)} | {near} | {len(gs) - near - far} | {far} | {set_piece} | {won[0]} | {won[1]} "

@@ -125,6 +125,11 @@ class Territory:
     won: list[int] = field(default_factory=lambda: [0, 0, 0])
 
 
+def third_of(x: float) -> int:
+    """0, 1 or 2: the third of the field of x, counted from the goal of the side whose frame x is in."""
+    return 0 if x < -THIRD else 1 if x <= THIRD else 2
+
+
 def territory_of(frames: list, our_side: str) -> dict[str, Territory]:
     """Where each team ("us", "them") had the ball (its last kick was theirs) and won it back, in
     thirds seen from our goal (``read_rcg``'s frames)."""
@@ -133,7 +138,7 @@ def territory_of(frames: list, our_side: str) -> dict[str, Territory]:
     out = {"us": Territory(), "them": Territory()}
     holder = None
     for i, (_, mode, ball, _) in enumerate(frames):
-        third = 0 if forward * ball[0] < -THIRD else 1 if forward * ball[0] <= THIRD else 2
+        third = third_of(forward * ball[0])
         kicker = kicked_at.get(i)
         if kicker is not None:
             who = "us" if kicker == our_side else "them"
