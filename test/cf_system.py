@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -96,6 +97,23 @@ class Probe(Ros):
     def wait_kind(self, name: str, kind: str, count: int = 1, timeout: float = 30.0) -> RegistryEvent:
         self.spin_until(lambda: self.kinds(name).count(kind) >= count, timeout, f"{count} x {kind} of {name}")
         return [e for e in self.events if e.record.name == name and e.kind_name == kind][count - 1]
+
+
+def match_lines(log: Path) -> list[str]:
+    """The match log's complete lines: the simulator may be mid-line when a test reads it."""
+    if not log.exists():
+        return []
+    return log.read_text().split("\n")[:-1]
+
+
+def last_match_record(log: Path) -> dict:
+    """The last complete record of a match log (the end record once the match is over)."""
+    return json.loads(match_lines(log)[-1])
+
+
+def match_ended(log: Path) -> bool:
+    lines = match_lines(log)
+    return bool(lines) and '"end"' in lines[-1]
 
 
 def start_commag(procs: Processes, tag: str, tmp_path: Path, *params: str, log_name: str = "commag"):

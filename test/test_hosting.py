@@ -8,7 +8,6 @@ found by lookup and answer agents of other processes, as components alone in a p
 
 from __future__ import annotations
 
-import json
 import os
 import signal
 
@@ -17,7 +16,7 @@ from test_sim_match import start_sim_process
 from cf_commag.client import Agent
 from cf_commag.process import process_start
 from cf_commag.testing import Ros
-from cf_system import players_argv, start_commag
+from cf_system import last_match_record, match_ended, players_argv, start_commag
 
 AGENTS = [f"blue_{n}_{role}" for n in (1, 2) for role in ("perception", "action", "decision")]
 
@@ -90,8 +89,8 @@ def test_two_containers_play_a_sync_match_every_player_acting_every_cycle(procs,
             probe.wait_kind(f"{side}{tag}_{n}_decision", "registered", timeout=60.0)
     start_sim_process(procs, tag, tmp_path, mode="sync", left_size=2, right_size=2, half_cycles=300, sync_timeout=2.0)
     log = tmp_path / "match.jsonl"
-    probe.spin_until(lambda: log.exists() and '"end"' in log.read_text(), timeout=180, what="the end of the match")
-    end = json.loads(log.read_text().splitlines()[-1])
+    probe.spin_until(lambda: match_ended(log), timeout=180, what="the end of the match")
+    end = last_match_record(log)
     # Lockstep: the simulator stepped when all four players' dones had come (in each process's one sample).
     assert end["sync"]["steps"] >= 300 and end["sync"]["timeouts"] <= 5, end["sync"]
     assert end["stats"]["kicks"]["l"] + end["stats"]["kicks"]["r"] > 0, end  # the decisions played the ball

@@ -22,7 +22,7 @@ import uuid
 
 import pytest
 
-from cf_system import executable, players_argv, start_commag
+from cf_system import executable, last_match_record, match_ended, match_lines, players_argv, start_commag
 
 
 def start_on(procs, machine: str, argv: list[str], log_name: str):
@@ -227,7 +227,7 @@ def test_a_match_across_two_hosts_with_a_process_on_host_b_killed_and_relaunched
         }
         wait(lambda: everyone <= set(registered()), 120, "both teams registered with the ComMAg on host A")
         start(hosts.b, "host_b", sim, "sim")
-        wait(lambda: log.exists() and len(log.read_text().splitlines()) > 150, 120, "play across the two hosts")
+        wait(lambda: len(match_lines(log)) > 150, 120, "play across the two hosts")
 
         os.killpg(red.pid, signal.SIGKILL)  # host B's team process: the ComMAg must have it started on B
         wait(lambda: commag_log.read_text().count("red_1_decision: relaunched") >= 1, 120, "the red team relaunched")
@@ -240,6 +240,6 @@ def test_a_match_across_two_hosts_with_a_process_on_host_b_killed_and_relaunched
         # The registry file is written a moment after the event (its store thread): wait for the new record.
         wait(lambda: new_pid() != red.pid, 30, "the relaunched record in the persisted registry")
         assert in_ns_namespace(new_pid(), hosts.b)  # running on host B again
-        wait(lambda: '"end"' in log.read_text(), 180, "the end of the match")
-        end = json.loads(log.read_text().splitlines()[-1])
+        wait(lambda: match_ended(log), 180, "the end of the match")
+        end = last_match_record(log)
         assert end["stats"]["kicks"]["l"] + end["stats"]["kicks"]["r"] > 0

@@ -12,7 +12,7 @@ import signal
 import time
 
 from cf_commag.client import Agent
-from cf_system import executable, start_commag
+from cf_system import executable, last_match_record, match_ended, match_lines, start_commag
 
 
 def start_sim_process(procs, tag, tmp_path, **params):
@@ -122,10 +122,8 @@ def test_short_match_with_a_component_killed_and_relaunched(procs, probe, tag, t
     answers = play(2, 2)
     assert answers.count("done") >= 2, answers  # the relaunched component plays on
 
-    probe.spin_until(
-        lambda: '"end"' in (tmp_path / "match.jsonl").read_text(), timeout=240, what="the end of the match"
-    )
-    lines = (tmp_path / "match.jsonl").read_text().splitlines()
+    probe.spin_until(lambda: match_ended(tmp_path / "match.jsonl"), timeout=240, what="the end of the match")
+    lines = match_lines(tmp_path / "match.jsonl")
     header, end = json.loads(lines[0]), json.loads(lines[-1])
     assert header["format"] == "cf-match-log" and header["teams"]["l"] == "blue"
     assert end["stats"]["kicks"]["l"] > 0
@@ -139,8 +137,8 @@ def test_sync_mode_steps_when_every_player_has_acted(procs, probe, tag, tmp_path
     for side in ("l", "r"):
         start_player_component(procs, tag, "action", side, 1)
     log = tmp_path / "match.jsonl"
-    probe.spin_until(lambda: log.exists() and '"end"' in log.read_text(), timeout=120, what="the end of the match")
-    end = json.loads(log.read_text().splitlines()[-1])
+    probe.spin_until(lambda: match_ended(log), timeout=120, what="the end of the match")
+    end = last_match_record(log)
     # Only the cycles before both action components were up waited for the timeout; the rest went in lockstep.
     assert end["sync"]["steps"] >= 300
     assert end["sync"]["steps"] - end["sync"]["timeouts"] >= 250, end["sync"]

@@ -7,14 +7,13 @@ twin at once, and the ComMAg relaunches the killed one.
 
 from __future__ import annotations
 
-import json
 import os
 import signal
 
 from test_sim_match import start_player_component, start_sim_process
 
 from cf_interfaces.srv import Lookup
-from cf_system import executable, start_commag
+from cf_system import executable, last_match_record, match_ended, match_lines, start_commag
 
 
 def start_decision(procs, tag, number, team_size):
@@ -80,14 +79,13 @@ def test_decision_team_plays_and_survives_losing_an_action_provider(procs, probe
 
     # Both blue players move: their positions change from the kick-off formation.
     def moved(number):
-        lines = log.read_text().splitlines()
-        last = json.loads(lines[-1])
+        last = last_match_record(log)
         return any(
             p[0] == "l" and p[1] == number and (abs(p[2]) > 1 and abs(p[4]) + abs(p[5]) > 0.01)
             for p in last.get("players", [])
         )
 
-    probe.spin_until(lambda: log.exists() and len(log.read_text().splitlines()) > 120, timeout=60, what="play")
+    probe.spin_until(lambda: len(match_lines(log)) > 120, timeout=60, what="play")
     probe.spin_until(lambda: moved(2), timeout=30, what="blue 2 moving")
     # Take away the provider in use: "a_" sorts first, so the original is the one in use.
     pid = next(p for p in procs.procs if "action_l2" in " ".join(p.args) and "twin" not in " ".join(p.args)).pid
@@ -95,8 +93,8 @@ def test_decision_team_plays_and_survives_losing_an_action_provider(procs, probe
     probe.wait_kind(first, "suspect", timeout=20)
     probe.spin_until(lambda: moved(2), timeout=10, what="blue 2 still playing through the twin")
     probe.wait_kind(first, "relaunched", timeout=60)
-    probe.spin_until(lambda: '"end"' in log.read_text(), timeout=120, what="the end of the match")
-    end = json.loads(log.read_text().splitlines()[-1])
+    probe.spin_until(lambda: match_ended(log), timeout=120, what="the end of the match")
+    end = last_match_record(log)
     assert end["stats"]["kicks"]["l"] > 0, end  # the decision team played the ball
 
 
@@ -117,7 +115,7 @@ def test_a_commag_killed_mid_match_comes_back_by_itself_and_loses_no_registratio
     for name in names:
         probe.wait_kind(name, "registered", timeout=60)
     log = tmp_path / "match.jsonl"
-    probe.spin_until(lambda: log.exists() and len(log.read_text().splitlines()) > 100, timeout=60, what="play")
+    probe.spin_until(lambda: len(match_lines(log)) > 100, timeout=60, what="play")
     before = set(probe.lookup("Service", direction=Lookup.Request.SPECIFIC))  # every component
 
     def commag_pid():
@@ -127,7 +125,7 @@ def test_a_commag_killed_mid_match_comes_back_by_itself_and_loses_no_registratio
     first = commag_pid()
     assert first is not None
     os.kill(first, signal.SIGKILL)
-    cycles_at_kill = len(log.read_text().splitlines())
+    cycles_at_kill = len(match_lines(log))
     probe.spin_until(lambda: commag_pid() not in (None, first), timeout=30, what="the supervisor to start it again")
     # The new ComMAg restored every registration and its lookups answer as before.
     everyone = {"direction": Lookup.Request.SPECIFIC}
@@ -136,5 +134,5 @@ def test_a_commag_killed_mid_match_comes_back_by_itself_and_loses_no_registratio
     # Nobody was relaunched or withdrawn because of it: the components kept renewing to the new ComMAg.
     probe.spin_for(3.0)
     assert not [e for e in probe.events if e.kind_name in ("withdrawn", "relaunching") and e.record.name in names]
-    probe.spin_until(lambda: len(log.read_text().splitlines()) > cycles_at_kill + 100, 60, "the match going on")
+    probe.spin_until(lambda: len(match_lines(log)) > cycles_at_kill + 100, 60, "the match going on")
     assert "started again as pid" in procs.log("supervise")
