@@ -2,12 +2,22 @@
 
 from __future__ import annotations
 
+import json
 import os
 import signal
+from pathlib import Path
 
 from cf_interfaces.msg import ComponentRecord
 from cf_interfaces.srv import Lookup, Register
 from cf_system import start_commag, start_component
+
+
+def saved_names(registry: Path) -> set[str]:
+    """The component names in a ComMAg's registry file (none while it is missing or half renamed)."""
+    try:
+        return {c["record"]["name"] for c in json.loads(registry.read_text())["components"]}
+    except (OSError, ValueError, KeyError):
+        return set()
 
 
 def pid_of(probe, name):
@@ -87,6 +97,10 @@ def test_commag_killed_and_restarted_keeps_every_registration(procs, probe, tag,
     for name in names:
         probe.wait_kind(name, "registered")
     pids_before = {n: pid_of(probe, n) for n in names}
+    # The registry file is written by the saver thread a moment after the events (a registration
+    # killed before it is saved comes back by the component's next renewal instead): kill once saved.
+    registry = tmp_path / "registry.json"
+    probe.spin_until(lambda: saved_names(registry) >= set(names), timeout=10, what="both registrations saved")
     os.kill(commag.pid, signal.SIGKILL)
     commag.wait()
     probe.events.clear()
@@ -96,6 +110,28 @@ def test_commag_killed_and_restarted_keeps_every_registration(procs, probe, tag,
     assert not [e for e in probe.events if e.kind_name in ("suspect", "relaunching", "withdrawn")]
     assert {n: pid_of(probe, n) for n in names} == pids_before
     assert "2 component(s) restored" in procs.log("commag-restarted")
+
+
+def test_registrations_a_restarted_commag_never_saved_come_back_by_the_components_renewals(procs, probe, tag, tmp_path):
+    """A ComMAg killed before its saver wrote a registration (here: started again on an empty file)."""
+    commag = start_commag(procs, tag, tmp_path)
+    names = [f"a_dash_{tag}", f"b_turn_{tag}"]
+    start_component(procs, tag, names[0], "--service-class", "Dash", "--lease", "0.5")
+    start_component(procs, tag, names[1], "--service-class", "Turn", "--lease", "0.5")
+    for name in names:
+        probe.wait_kind(name, "registered")
+    pids_before = {n: pid_of(probe, n) for n in names}
+    os.kill(commag.pid, signal.SIGKILL)
+    commag.wait()
+    probe.events.clear()
+    start_commag(procs, tag, tmp_path, f"persistence_path:={tmp_path / 'empty.json'}", log_name="commag-restarted")
+    for name in names:  # each renewal is a whole registration: the new ComMAg takes it as one
+        probe.wait_kind(name, "registered", timeout=20)
+    assert probe.lookup("Movement", direction=Lookup.Request.SPECIFIC) == names
+    assert not [e for e in probe.events if e.kind_name in ("relaunching", "withdrawn")]
+    assert {n: pid_of(probe, n) for n in names} == pids_before
+    assert "0 component(s) restored" in procs.log("commag-restarted")
+    probe.spin_until(lambda: saved_names(tmp_path / "empty.json") == set(names), timeout=10, what="saved again")
 
 
 def test_launch_command_outside_the_allowlist_is_refused(procs, probe, tag, tmp_path):
