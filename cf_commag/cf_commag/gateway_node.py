@@ -92,7 +92,10 @@ class GatewayNode(GuardedNode, Node):
         port = asyncio.run_coroutine_threadsafe(self.gateway.start(), self.loop).result(timeout=10)
         self.get_logger().info(f"gateway listening on {self.config.host}:{port}")
         if p.port_file:
-            Path(p.port_file).write_text(f"{port}\n")
+            # Written whole then renamed: whoever waits for the file never reads it empty.
+            tmp = Path(f"{p.port_file}.tmp")
+            tmp.write_text(f"{port}\n")
+            tmp.replace(p.port_file)
 
     # ---- thread hand-off ----------------------------------------------------
 
