@@ -6,7 +6,14 @@ noise), decides with `cf_decision.policy.decide` and acts through `skills.skill_
 share their times to the ball and the passes they ask for as the decision components do over ACL
 (a pass is heard in the next cycle).
 
-    python bench/eval_team.py [--matches 10] [--players 11] [--half-cycles 1500]
+    python bench/eval_team.py [--matches 10] [--players 11] [--half-cycles 1500] [--opponent chasers|ours]
+                              [--out DIR]
+
+``--opponent ours`` plays the cf_decision team against itself. ``--out DIR`` keeps each match as
+``DIR/match-SEED/``: the match log, its game log (``.rcg``, with rcssserver's command counters)
+and each player's decision log (``logs-CF/``, the lines a decision component logs), the layout
+``tools/rcss_match.py --out`` writes, so the rcssserver analysis tools (``tools/rcss_ball_use.py``,
+``rcss_goals.py``, ``rcss_series.py``'s counts) read a match of either back-end.
 """
 
 from __future__ import annotations
@@ -14,13 +21,18 @@ from __future__ import annotations
 import argparse
 import random
 import statistics
+from pathlib import Path
 
 from cf_decision.policy import decide
 from cf_decision.receive import Announced, to_announce
-from cf_decision.requests import same_request
-from cf_decision.set_piece import SetPieceTaker
+from cf_decision.requests import aim_text, same_request
+from cf_decision.set_piece import KICKING, SetPieceTaker
+from cf_decision.touch import LastTouch
 from cf_decision.without_ball import NEVER, state_eta
+from cf_lang.ontology import Team
 from cf_sim_backend.embedded.chaser import chase_commands
+from cf_sim_backend.embedded.matchlog import MatchLog
+from cf_sim_backend.embedded.rcg import export
 from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.perception import observe
 from cf_sim_backend.skills import SkillError, skill_for
@@ -30,11 +42,15 @@ from cf_sim_backend.world import Params, Side
 class PolicyTeam:
     """Drives one side with the cf_decision policy, one skill per player at a time."""
 
-    def __init__(self, sim: Simulator, side: Side, seed: int):
+    def __init__(self, sim: Simulator, side: Side, seed: int, log_dir: Path | None = None):
         self.sim, self.side = sim, side
         self.rng = random.Random(seed)
         self.current: dict[int, tuple[tuple, object]] = {}
         self.takers: dict[int, SetPieceTaker] = {}
+        self.touches: dict[int, LastTouch] = {}
+        self.team = sim.world.team_names[side]
+        self.logs: dict[int, list[str]] = {}  # number -> the decision component's log lines
+        self.log_dir = log_dir
         self.passes: dict[int, dict[int, Announced]] = {}  # hearer -> passer -> the pass he heard
         self.size = sum(1 for p in sim.world.players.values() if p.side is side)
 
@@ -52,13 +68,20 @@ class PolicyTeam:
         asked = []
         for n, st in states.items():
             me = w.player(self.side, n)
-            decision = decide(st, n, self.size, claims, may_touch[n], list(self.passes.get(n, {}).values()))
+            touch = self.touches.setdefault(n, LastTouch())
+            touch.seen(st)
+            mate_touched = touch.team is Team.OUR
+            heard = list(self.passes.get(n, {}).values())
+            decision = decide(st, n, self.size, claims, may_touch[n], heard, mate_touched)
             self.takers[n].decided(st, decision)
             if to_announce(st, decision):
                 asked.append((n, decision.action))
             key = (decision.method, decision.action)
             current = self.current.get(n)
             if current is None or not same_request(current[0], key):
+                if decision.method in KICKING:  # as the decision component logs a new way of playing the ball
+                    line = f"[{self.team}_{n}_decision]: t={st.time} {decision.method}: {decision.why}"
+                    self.logs.setdefault(n, []).append(line + aim_text(st, decision))
                 try:
                     skill = skill_for(decision.method, decision.action, self.side, w, me)
                 except SkillError:
@@ -76,20 +99,45 @@ class PolicyTeam:
                 if n != passer and st.ball and st.ball.positioning:
                     ball = (st.ball.positioning.x, st.ball.positioning.y)
                     self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, st.time + 1)
+                    self.touches.setdefault(n, LastTouch()).played_by_mate()
+
+    def write_logs(self) -> None:
+        """Each player's decision log, where ``tools/rcss_match.py --out`` puts our players' logs."""
+        if self.log_dir is None:
+            return
+        self.log_dir.mkdir(parents=True, exist_ok=True)
+        for n, lines in self.logs.items():
+            (self.log_dir / f"{self.team}_{n}_decision.log").write_text("\n".join(lines) + "\n")
 
 
-def play(seed: int, players: int, half_cycles: int) -> dict:
+def play(seed: int, players: int, half_cycles: int, opponent: str = "chasers", out: Path | None = None) -> dict:
     sim = Simulator(
         Params(half_cycles=half_cycles, auto_kick_off_cycles=5),
         team_sizes=(players, players),
-        team_names=("cf_decision", "chasers"),
+        team_names=("CF", "CFB" if opponent == "ours" else "chasers"),
         seed=seed,
     )
-    ours = PolicyTeam(sim, Side.LEFT, seed)
+    match = out / f"match-{seed}" if out else None
+    ours = PolicyTeam(sim, Side.LEFT, seed, match / "logs-CF" if match else None)
+    theirs = (
+        PolicyTeam(sim, Side.RIGHT, seed + 1000, match / "logs-CFB" if match else None) if opponent == "ours" else None
+    )
+    log = MatchLog(match / "match.jsonl", sim, 0.1) if match else None
     while not sim.finished:
         ours.commands()
-        chase_commands(sim, Side.RIGHT)
-        sim.step()
+        if theirs:
+            theirs.commands()
+        else:
+            chase_commands(sim, Side.RIGHT)
+        events = sim.step()
+        if log:
+            log.cycle(sim.snapshot(), events)
+    if log and match:
+        log.close()
+        export(match / "match.jsonl", match / "match.rcg")
+        for team in (ours, theirs):
+            if team:
+                team.write_logs()
     w = sim.world
     return {
         "seed": seed,
@@ -106,10 +154,13 @@ def main() -> None:
     parser.add_argument("--matches", type=int, default=10)
     parser.add_argument("--players", type=int, default=11)
     parser.add_argument("--half-cycles", type=int, default=1500)
+    parser.add_argument("--opponent", choices=("chasers", "ours"), default="chasers")
+    parser.add_argument("--out", type=Path, help="keep each match's logs here (match-SEED/)")
     args = parser.parse_args()
-    rows = [play(seed, args.players, args.half_cycles) for seed in range(args.matches)]
-    print(f"{args.players} v {args.players}, {2 * args.half_cycles} cycles a match, cf_decision (left) v chasers\n")
-    print("| seed | cf_decision | chasers | result | our shots | our kicks | our possession |")
+    rows = [play(seed, args.players, args.half_cycles, args.opponent, args.out) for seed in range(args.matches)]
+    them = "chasers" if args.opponent == "chasers" else "cf_decision"
+    print(f"{args.players} v {args.players}, {2 * args.half_cycles} cycles a match, cf_decision (left) v {them}\n")
+    print(f"| seed | cf_decision | {them} | result | our shots | our kicks | our possession |")
     print("|---:|---:|---:|---|---:|---:|---:|")
     for r in rows:
         result = "win" if r["ours"] > r["theirs"] else "draw" if r["ours"] == r["theirs"] else "loss"

@@ -336,3 +336,29 @@ def test_each_goal_is_put_down_to_its_shot_the_keeper_and_how_the_move_began(tmp
     text = summary([ours, theirs])
     assert "| for us | 1 | 1 | 0 | 0 | 0 | 1 | 0 | 0 | 2 | 6 |" in text
     assert "| against us | 1 | 0 | 1 | 0 | 1 | 0 | 0 | 0 | 2 | 8 |" in text
+
+
+def test_an_embedded_match_is_read_by_the_same_tools_and_set_beside_another_back_ends(tmp_path):
+    """bench/eval_team.py --out writes what rcss_match --out does: the tools read either back-end."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
+    from compare_backends import BackEnd, figures_table, reason_table, teams_in
+    from eval_team import play
+
+    play(3, 5, 300, opponent="ours", out=tmp_path)
+    match = tmp_path / "match-3"
+    said = (match / "logs-CF").glob("*.log")
+    assert any("_decision]: t=" in log.read_text() for log in said)  # the decisions' own log lines
+    frames = read_rcg(next(match.glob("*.rcg")))
+    assert sum(kicks for *_, kicks in frames[-1][3]) > 0  # the game log counts the kicks
+    uses = ball_use(match, "CF")
+    assert sum(o.kept + o.lost for o in uses.values()) > 0
+    assert "?" not in {why for why, _ in uses}  # every kick in play put down to a logged reason
+    assert teams_in(match, ["CF", "CFB", "X"]) == ["CF", "CFB"]
+    a, b = BackEnd("embedded"), BackEnd("again")
+    for side in (a, b):
+        for team in ("CF", "CFB"):
+            side.add(match, team)
+    rows = reason_table(a, b).splitlines()
+    assert rows[0].startswith("| with the ball | share of kicks, embedded | again |")
+    assert all(r.split(" | ")[1] == r.split(" | ")[2] for r in rows[2:])  # the same matches: the same shares
+    assert "| teams counted | 2 | 2 |" in figures_table(a, b)

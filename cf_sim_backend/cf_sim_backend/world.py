@@ -106,6 +106,23 @@ class SimBall:
     vy: float = 0.0
 
 
+# rcssserver's command counters, in the order its game log writes them.
+COUNTED = (
+    "kick",
+    "dash",
+    "turn",
+    "catch",
+    "move",
+    "turn_neck",
+    "change_view",
+    "say",
+    "tackle",
+    "pointto",
+    "attentionto",
+    "change_focus",
+)
+
+
 @dataclass
 class SimPlayer:
     side: Side
@@ -120,6 +137,9 @@ class SimPlayer:
     goalie: bool = False
     kicks: int = 0  # kicks that reached the ball
     frozen: int = 0  # cycles left in which a tackle keeps the player from any body command
+    # The commands the simulator carried out, counted as rcssserver counts them (by COUNTED): a kick
+    # once it reached the ball, a tackle whether it hit or not.
+    counts: list[int] = field(default_factory=lambda: [0] * len(COUNTED))
 
     @property
     def key(self) -> tuple[Side, int]:

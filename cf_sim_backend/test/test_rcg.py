@@ -78,3 +78,17 @@ def test_positions_are_mirrored_into_the_servers_frame_one_show_per_cycle(tmp_pa
     assert (entry[3], entry[4]) == (round(x, 4), round(-y, 4))
     goalie = next(p for p in players(show) if p[0] == [Symbol("l"), 1])
     assert goalie[2] == Symbol("0x9")  # standing goalkeeper, as rcssserver writes it
+
+
+def test_the_players_counters_are_the_commands_the_simulator_carried_out(tmp_path: Path):
+    play_logged_match(tmp_path / "match.jsonl")
+    _, _, end = read_log(tmp_path / "match.jsonl")
+    _, ours = lines_of(export(tmp_path / "match.jsonl", tmp_path / "match.rcg"))
+    last = [line for line in ours if line[0] == Symbol("show")][-1]
+    for side in ("l", "r"):
+        counts = [next(x for x in p[1:] if isinstance(x, list) and x[0] == Symbol("c"))[1:] for p in players(last)]
+        mine = [c for p, c in zip(players(last), counts, strict=True) if p[0][0] == Symbol(side)]
+        # The chasers only kick (no tackles), so their kick counters add up to the side's kicks.
+        assert sum(c[0] for c in mine) == end["stats"]["kicks"][side] > 0
+        assert all(c[1] > 0 for c in mine)  # every chaser dashed
+        assert len(mine[0]) == 12  # all of rcssserver's counters

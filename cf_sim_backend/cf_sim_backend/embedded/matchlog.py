@@ -1,4 +1,4 @@
-"""The match log: every cycle's true state, one JSON object per line (format in docs/match-log.md)."""
+"""The match log: every cycle's true state, one JSON object per line (format in docs/simulator.md)."""
 
 from __future__ import annotations
 
@@ -32,7 +32,8 @@ class MatchLog:
         self._file.write(json.dumps(obj, separators=(",", ":")) + "\n")
 
     def cycle(self, snapshot: dict, events: list[str]) -> None:
-        self._write({**snapshot, "events": events} if events else snapshot)
+        line = {**snapshot, "counts": self._sim.counts()}
+        self._write({**line, "events": events} if events else line)
 
     def close(self, extra: dict | None = None) -> None:
         stats = {k: {s.value: v for s, v in d.items()} for k, d in self._sim.stats.items()}

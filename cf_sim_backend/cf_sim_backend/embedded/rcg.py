@@ -17,6 +17,7 @@ import sys
 from pathlib import Path
 
 from cf_sim_backend.embedded.report import read_log
+from cf_sim_backend.world import COUNTED
 
 # Every play mode rcssserver 19 names (its PLAYMODE_STRINGS), in order.
 RCSS_PLAYMODES = (  # noqa: SIM905 - fifty names read better as text
@@ -90,11 +91,13 @@ def show(cycle: dict) -> str:
     """One cycle as a ``show`` line: the ball, then every player (rcssserver's frame)."""
     bx, by, bvx, bvy = cycle["ball"]
     parts = [f"(show {cycle['t']} ((b) {_num(bx)} {_num(-by)} {_num(bvx)} {_num(-bvy)})"]
+    counts = cycle.get("counts", {})  # (logs written before the counters have none)
     for side, number, x, y, vx, vy, body, neck, stamina, goalie in sorted(cycle["players"], key=lambda p: (p[0], p[1])):
         state = STAND | (GOALIE if goalie else 0)
+        c = " ".join(str(n) for n in counts.get(f"{side}{number}", [0] * len(COUNTED)))
         parts.append(
             f" (({side} {number}) 0 {state:#x} {_num(x)} {_num(-y)} {_num(vx)} {_num(-vy)} {_num(-body)} {_num(-neck)}"
-            f" (v h 90) (fp 0 0) (s {_num(stamina)} 1 1 130600) (c 0 0 0 0 0 0 0 0 0 0 0 0))"
+            f" (v h 90) (fp 0 0) (s {_num(stamina)} 1 1 130600) (c {c}))"
         )
     return "".join(parts) + ")"
 

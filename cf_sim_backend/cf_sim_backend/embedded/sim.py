@@ -6,8 +6,11 @@ import random
 
 from cf_sim_backend.embedded import physics, referee
 from cf_sim_backend.embedded.physics import CommandError
-from cf_sim_backend.world import Params, Side, SimBall, SimPlayer, World, direction_deg
+from cf_sim_backend.world import COUNTED, Params, Side, SimBall, SimPlayer, World, direction_deg
 
+_KICK, _DASH, _TURN, _CATCH, _MOVE, _TURN_NECK, _TACKLE = (
+    COUNTED.index(n) for n in ("kick", "dash", "turn", "catch", "move", "turn_neck", "tackle")
+)
 _ARITY = {
     "dash": (1, 2),
     "turn": (1, 1),
@@ -111,6 +114,7 @@ class Simulator:
             return events
         for key, angle in neck.items():
             physics.turn_neck(w, w.players[key], angle)
+            w.players[key].counts[_TURN_NECK] += 1
         keys = list(body)
         self.rng.shuffle(keys)  # no side gets to kick first by its number
         for p in w.players.values():
@@ -146,6 +150,7 @@ class Simulator:
         for key, (name, args) in body.items():
             if name == "move":
                 self._move(self.world.players[key], *args)
+                self.world.players[key].counts[_MOVE] += 1
 
     def _move(self, p: SimPlayer, x: float, y: float) -> None:
         """Place a player in its own half (x given for the left side, as rcssserver's move)."""
@@ -158,13 +163,16 @@ class Simulator:
         w = self.world
         if name == "dash":
             physics.dash(w, p, *args)
+            p.counts[_DASH] += 1
         elif name == "turn":
             physics.turn(w, p, args[0])
+            p.counts[_TURN] += 1
         elif name == "move":
             pass  # as in rcssserver, a move counts only before a kick-off or after a goal (step() does those)
         elif name in ("kick", "tackle"):
             return self._touch(p, name, args)
         elif name == "catch" and w.mode == "play_on" and physics.catch(w, p, args[0]):
+            p.counts[_CATCH] += 1
             w.last_touch = p.key
             referee.start_set_piece(w, "free_kick", p.side, w.ball.x, w.ball.y)
             return f"catch {p.side.value} {p.number}"
@@ -184,7 +192,12 @@ class Simulator:
             self._offside = {Side.LEFT: set(), Side.RIGHT: set()}
             referee.start_set_piece(w, "free_kick", p.side.other, p.x, p.y)
             return f"offside {p.side.value} {p.number}"
-        touched = physics.kick(w, p, *args) if name == "kick" else physics.tackle(w, p, args[0], self.rng)
+        if name == "kick":
+            touched = physics.kick(w, p, *args)
+            p.counts[_KICK] += touched
+        else:
+            touched = physics.tackle(w, p, args[0], self.rng)
+            p.counts[_TACKLE] += 1
         if not touched:
             return None
         w.last_touch = p.key
@@ -203,6 +216,10 @@ class Simulator:
             referee.set_mode(w, "play_on")
             self._taker = (p.key, w.mode_since)
         return f"shot {p.side.value} {p.number}" if shot else None
+
+    def counts(self) -> dict[str, list[int]]:
+        """Each player's counted commands (``"l9"``: rcssserver's counters, see ``SimPlayer.counts``)."""
+        return {f"{p.side.value}{p.number}": list(p.counts) for p in self.world.players.values()}
 
     def snapshot(self) -> dict:
         """The true state of this cycle as plain data (the match log's and the state topic's format)."""
