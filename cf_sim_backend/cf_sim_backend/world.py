@@ -63,6 +63,7 @@ class Params:
     side_dash_rate: float = 0.4  # a dash at 90 degrees off the body accelerates this share (rcssserver 14+)
     back_dash_rate: float = 0.7  # and one straight back this share
     kick_power_rate: float = 0.027
+    kick_rand: float = 0.1  # a kick's noise at full power (rcssserver's default player type)
     kickable_margin: float = 0.7
     inertia_moment: float = 5.0
     max_moment: float = 180.0

@@ -17,7 +17,7 @@ from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.perception import observe
 from cf_sim_backend.world import Params, Side
 
-QUIET = Params(ball_rand=0.0, player_rand=0.0, auto_kick_off_cycles=1)
+QUIET = Params(ball_rand=0.0, player_rand=0.0, kick_rand=0.0, auto_kick_off_cycles=1)
 
 
 def sim_with(*players, **kw):
@@ -51,6 +51,25 @@ def test_kick_power_direction_and_kickable_distance():
     sim.command(Side.LEFT, 2, "kick", 100, 0)
     sim.step()
     assert w.ball.vx == 0.0 and w.player(Side.LEFT, 2).kicks == 1
+
+
+def test_a_kick_gets_rcssservers_noise_within_its_bound():
+    """kick_rand x power share x (pos_rate + speed_rate): at full power, the ball at rest straight ahead
+    at 0.7 m, pos_rate = 0.5 + 0.25 x 0.315 / 0.7 and speed_rate = 0.5, so at most 0.1 x 1.1125 m/cycle."""
+    params = replace(QUIET, kick_rand=0.1)
+    errors = []
+    for seed in range(200):
+        sim = Simulator(params, team_sizes=(2, 0), seed=seed)
+        w, p = sim.world, sim.world.player(Side.LEFT, 2)
+        w.players = {p.key: p}
+        p.x, p.y, p.body, w.mode = 0.0, 0.0, 0.0, "play_on"
+        w.ball.x, w.ball.y, w.ball.vx, w.ball.vy = 0.7, 0.0, 0.0, 0.0
+        sim.command(Side.LEFT, 2, "kick", 100, 90)
+        sim.step()
+        plain = 100 * 0.027 * (1 - 0.25 * 0.315 / 0.7)
+        errors.append(math.hypot(w.ball.vx / w.params.ball_decay, w.ball.vy / w.params.ball_decay - plain))
+    assert max(errors) <= 0.1 * (1.0 + 0.25 * 0.315 / 0.7) + 1e-9
+    assert max(errors) > 0.08 and min(errors) < 0.02  # drawn over the whole range
 
 
 def test_a_move_counts_before_a_kick_off_and_not_once_it_is_called():

@@ -66,8 +66,12 @@ def turn_neck(world: World, p: SimPlayer, angle: float) -> None:
     p.neck = _clamp(p.neck + angle, -limit, limit)
 
 
-def kick(world: World, p: SimPlayer, power: float, direction: float) -> bool:
-    """Kick the ball if it is kickable; return whether it was touched."""
+def kick(world: World, p: SimPlayer, power: float, direction: float, rng: random.Random | None = None) -> bool:
+    """Kick the ball if it is kickable; return whether it was touched.
+
+    With ``rng``, the kick gets rcssserver's noise: up to kick_rand x power share x (0.5..1 for the
+    ball's place off the body and foot + 0.5..1 for its speed) m/cycle, in any direction.
+    """
     prm = world.params
     if not kickable(world, p):
         return False
@@ -79,7 +83,14 @@ def kick(world: World, p: SimPlayer, power: float, direction: float) -> bool:
     accel = min(power * rate, prm.ball_accel_max)
     angle = math.radians(p.body + _clamp(direction, -180.0, 180.0))
     b = world.ball
-    b.vx, b.vy = _cap(b.vx + accel * math.cos(angle), b.vy + accel * math.sin(angle), prm.ball_speed_max)
+    ax, ay = accel * math.cos(angle), accel * math.sin(angle)
+    if rng is not None:
+        pos_rate = 0.5 + 0.25 * (dir_diff / 180.0 + dist_ball / prm.kickable_margin)
+        speed_rate = 0.5 + 0.5 * math.hypot(b.vx, b.vy) / (prm.ball_speed_max * prm.ball_decay)
+        size = rng.uniform(0.0, prm.kick_rand * power / 100.0 * (pos_rate + speed_rate))
+        heading = rng.uniform(-math.pi, math.pi)
+        ax, ay = _cap(ax + size * math.cos(heading), ay + size * math.sin(heading), prm.ball_accel_max)
+    b.vx, b.vy = _cap(b.vx + ax, b.vy + ay, prm.ball_speed_max)
     p.kicks += 1
     return True
 

@@ -193,7 +193,7 @@ class Simulator:
             referee.start_set_piece(w, "free_kick", p.side.other, p.x, p.y)
             return f"offside {p.side.value} {p.number}"
         if name == "kick":
-            touched = physics.kick(w, p, *args)
+            touched = physics.kick(w, p, *args, rng=self.rng)
             p.counts[_KICK] += touched
         else:
             touched = physics.tackle(w, p, args[0], self.rng)
