@@ -34,6 +34,7 @@ from cf_sim_backend.embedded.chaser import chase_commands
 from cf_sim_backend.embedded.matchlog import MatchLog
 from cf_sim_backend.embedded.rcg import export
 from cf_sim_backend.embedded.sim import Simulator
+from cf_sim_backend.memory import Memory
 from cf_sim_backend.perception import observe
 from cf_sim_backend.skills import SkillError, skill_for
 from cf_sim_backend.world import Params, Side
@@ -42,7 +43,7 @@ from cf_sim_backend.world import Params, Side
 class PolicyTeam:
     """Drives one side with the cf_decision policy, one skill per player at a time."""
 
-    def __init__(self, sim: Simulator, side: Side, seed: int, log_dir: Path | None = None):
+    def __init__(self, sim: Simulator, side: Side, seed: int, log_dir: Path | None = None, memory: bool = True):
         self.sim, self.side = sim, side
         self.rng = random.Random(seed)
         self.current: dict[int, tuple[tuple, object]] = {}
@@ -51,13 +52,21 @@ class PolicyTeam:
         self.team = sim.world.team_names[side]
         self.logs: dict[int, list[str]] = {}  # number -> the decision component's log lines
         self.log_dir = log_dir
+        self.memory = memory
+        self.memories: dict[int, Memory] = {}  # number -> what he remembers (as the perception component)
         self.passes: dict[int, dict[int, Announced]] = {}  # hearer -> passer -> the pass he heard
         self.size = sum(1 for p in sim.world.players.values() if p.side is side)
 
     def commands(self) -> None:
         w = self.sim.world
         states = {
-            p.number: observe(w, self.side, p.number, self.rng) for p in w.players.values() if p.side is self.side
+            p.number: self.memories.setdefault(p.number, Memory(w.params)).recall(
+                observe(w, self.side, p.number, self.rng)
+            )
+            if self.memory
+            else observe(w, self.side, p.number, self.rng)
+            for p in w.players.values()
+            if p.side is self.side
         }
         claims, may_touch = {}, {}
         for n, st in states.items():

@@ -341,7 +341,7 @@ def test_each_goal_is_put_down_to_its_shot_the_keeper_and_how_the_move_began(tmp
 def test_an_embedded_match_is_read_by_the_same_tools_and_set_beside_another_back_ends(tmp_path):
     """bench/eval_team.py --out writes what rcss_match --out does: the tools read either back-end."""
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
-    from compare_backends import BackEnd, figures_table, reason_table, teams_in
+    from compare_backends import BackEnd, figures_table, reason_table, share_difference, teams_in
     from eval_team import play
 
     play(3, 5, 300, opponent="ours", out=tmp_path)
@@ -362,3 +362,7 @@ def test_an_embedded_match_is_read_by_the_same_tools_and_set_beside_another_back
     assert rows[0].startswith("| with the ball | share of kicks, embedded | again |")
     assert all(r.split(" | ")[1] == r.split(" | ")[2] for r in rows[2:])  # the same matches: the same shares
     assert "| teams counted | 2 | 2 |" in figures_table(a, b)
+    assert share_difference(a, b) == 0.0
+    b.uses.clear()
+    b.uses["something else"].kept = 1
+    assert share_difference(a, b) == 1.0

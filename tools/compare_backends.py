@@ -8,8 +8,9 @@ A DIR is a match directory as ``tools/rcss_match.py --out`` (``rcss_series``: it
 sides of our team against itself, the fairest comparison, since the opponent is then the same on
 both back-ends). For each back-end it prints how the play was shared out: what our players did
 with the ball (``tools/rcss_ball_use.py``'s reasons, both halves together) as a share of all their
-kicks in play, and how often each kept the ball; then per match the kicks in play per 1000
-cycles, the kept share, the shots (kicks from within 25 m of the goal) and where the ball was.
+kicks in play, and how often each kept the ball; then how much of the one mix is played another
+way in the other (half the sum of the shares' differences), and per match the kicks in play per
+1000 cycles, the kept share, the shots (kicks from within 25 m of the goal) and where the ball was.
 If the same decision code plays the same way, the shares on the two back-ends are close; where
 they part, one back-end's physics or perception differs from the other's (docs/simulator.md).
 """
@@ -101,6 +102,19 @@ def reason_table(a: BackEnd, b: BackEnd) -> str:
     return "\n".join(rows)
 
 
+def share_difference(a: BackEnd, b: BackEnd) -> float:
+    """How far apart the two back-ends' ways of playing the ball are: half the sum, over the reasons,
+    of the difference of their shares of the kicks (0: the same mix, 1: nothing in common)."""
+    reasons = set(a.uses) | set(b.uses)
+    return (
+        sum(
+            abs((a.uses[k].kept + a.uses[k].lost) / a.judged() - (b.uses[k].kept + b.uses[k].lost) / b.judged())
+            for k in reasons
+        )
+        / 2
+    )
+
+
 def figures_table(a: BackEnd, b: BackEnd) -> str:
     rows = [f"| per team and match | {a.name} | {b.name} |", "|---|---:|---:|"]
 
@@ -108,6 +122,7 @@ def figures_table(a: BackEnd, b: BackEnd) -> str:
         rows.append(f"| {label} | {fn(a)} | {fn(b)} |")
 
     line("teams counted", lambda s: str(s.teams))
+    rows.append(f"| the mix of ways above: share of kicks played another way | {share_difference(a, b):.0%} | |")
     line("kicks in play per 1000 play-on cycles", lambda s: f"{1000 * s.kicks / max(1, s.cycles):.0f}")
     line("kicks kept (to a team-mate)", lambda s: share(sum(o.kept for o in s.uses.values()), s.judged()))
     line("shots per 1000 play-on cycles", lambda s: f"{1000 * s.shots / max(1, s.cycles):.1f}")

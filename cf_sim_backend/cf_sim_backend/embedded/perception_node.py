@@ -9,6 +9,7 @@ from pydantic import Field
 
 from cf_commag.runtime import run
 from cf_sim_backend.embedded.player_base import PlayerComponentNode, PlayerParams
+from cf_sim_backend.memory import Memory
 from cf_sim_backend.perception import observe
 from cf_sim_backend.services import PerceptionService
 from cf_sim_backend.world import World
@@ -17,6 +18,7 @@ from cf_sim_backend.world import World
 class PerceptionParams(PlayerParams):
     noise: float = Field(0.02, ge=0, description="position noise: standard deviation per metre of distance")
     seed: int = Field(0, description="random seed of the noise")
+    memory: bool = Field(True, description="tell the players and ball seen lately too, as on rcssserver (memory.py)")
 
 
 class PerceptionNode(PlayerComponentNode):
@@ -30,9 +32,11 @@ class PerceptionNode(PlayerComponentNode):
         super().__init__(**kwargs)
         self.rng = random.Random(self.p.seed * 100 + self.number + (0 if self.p.side == "l" else 50))
         self.perception = PerceptionService(self.agent, "the simulator has not started")
+        self.memory = Memory() if self.p.memory else None
 
     def on_cycle(self, world: World) -> None:
-        self.perception.publish(observe(world, self.side, self.number, self.rng, noise=self.p.noise))
+        state = observe(world, self.side, self.number, self.rng, noise=self.p.noise)
+        self.perception.publish(self.memory.recall(state) if self.memory else state)
 
 
 def main() -> int:
