@@ -89,14 +89,19 @@ def test_repeatedly_failing_component_is_withdrawn_and_lookup_reroutes(procs, pr
     assert probe.lookup("Kick", include_suspect=True) == [twin]
 
 
-def test_commag_killed_and_restarted_keeps_every_registration(procs, probe, tag, tmp_path):
+def two_movement_components(procs, probe, tag, tmp_path):
+    """A ComMAg with a Dash and a Turn component registered: (the ComMAg, their names, their pids)."""
     commag = start_commag(procs, tag, tmp_path)
     names = [f"a_dash_{tag}", f"b_turn_{tag}"]
     start_component(procs, tag, names[0], "--service-class", "Dash", "--lease", "0.5")
     start_component(procs, tag, names[1], "--service-class", "Turn", "--lease", "0.5")
     for name in names:
         probe.wait_kind(name, "registered")
-    pids_before = {n: pid_of(probe, n) for n in names}
+    return commag, names, {n: pid_of(probe, n) for n in names}
+
+
+def test_commag_killed_and_restarted_keeps_every_registration(procs, probe, tag, tmp_path):
+    commag, names, pids_before = two_movement_components(procs, probe, tag, tmp_path)
     # The registry file is written by the saver thread a moment after the events (a registration
     # killed before it is saved comes back by the component's next renewal instead): kill once saved.
     registry = tmp_path / "registry.json"
@@ -107,20 +112,17 @@ def test_commag_killed_and_restarted_keeps_every_registration(procs, probe, tag,
     start_commag(procs, tag, tmp_path, log_name="commag-restarted")
     assert probe.lookup("Movement", direction=Lookup.Request.SPECIFIC) == names
     probe.spin_for(3.0)  # six leases: every component renews, none is relaunched
-    assert not [e for e in probe.events if e.kind_name in ("suspect", "relaunching", "withdrawn")]
+    # (On a loaded machine a renewal may come a few ms late: suspect for a moment, never relaunched.)
+    faults = [(e.record.name, e.kind_name, e.reason) for e in probe.events]
+    assert not [f for f in faults if f[1] in ("relaunching", "withdrawn")], faults
+    probe.spin_until(lambda: probe.lookup("Movement", direction=Lookup.Request.SPECIFIC) == names, 10, "both healthy")
     assert {n: pid_of(probe, n) for n in names} == pids_before
     assert "2 component(s) restored" in procs.log("commag-restarted")
 
 
 def test_registrations_a_restarted_commag_never_saved_come_back_by_the_components_renewals(procs, probe, tag, tmp_path):
     """A ComMAg killed before its saver wrote a registration (here: started again on an empty file)."""
-    commag = start_commag(procs, tag, tmp_path)
-    names = [f"a_dash_{tag}", f"b_turn_{tag}"]
-    start_component(procs, tag, names[0], "--service-class", "Dash", "--lease", "0.5")
-    start_component(procs, tag, names[1], "--service-class", "Turn", "--lease", "0.5")
-    for name in names:
-        probe.wait_kind(name, "registered")
-    pids_before = {n: pid_of(probe, n) for n in names}
+    commag, names, pids_before = two_movement_components(procs, probe, tag, tmp_path)
     os.kill(commag.pid, signal.SIGKILL)
     commag.wait()
     probe.events.clear()

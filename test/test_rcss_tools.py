@@ -6,6 +6,8 @@ import math
 import sys
 from pathlib import Path
 
+import pytest
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from rcss_ball_use import ball_use, reason, table, territory, territory_table
@@ -362,7 +364,7 @@ def test_an_embedded_match_is_read_by_the_same_tools_and_set_beside_another_back
     assert rows[0].startswith("| with the ball | share of kicks, embedded | again |")
     assert all(r.split(" | ")[1] == r.split(" | ")[2] for r in rows[2:])  # the same matches: the same shares
     assert "| teams counted | 2 | 2 |" in figures_table(a, b)
-    assert share_difference(a, b) == 0.0
+    assert share_difference(a, b) == pytest.approx(0.0)
     b.uses.clear()
     b.uses["something else"].kept = 1
-    assert share_difference(a, b) == 1.0
+    assert share_difference(a, b) == pytest.approx(1.0)
