@@ -22,7 +22,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_ball_use import game, match_parser
-from rcss_series import THIRD, kick_events
+from rcss_series import kick_events, third_of
 
 from cf_decision import reach
 from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
@@ -73,7 +73,7 @@ def options(match: Path, team: str = "CF", speed: float = 2.7, margin: int = 2) 
         opponents = [
             reach.Runner((forward * p[2], forward * p[3]), bool(p[6] & GOALIE)) for p in players if p[0] != side
         ]
-        third = THIRDS[0] if ball[0] < -THIRD else THIRDS[1] if ball[0] < THIRD else THIRDS[2]
+        third = THIRDS[third_of(ball[0])]
         out[(third, bin_of(best_gain(ball, mates, opponents, speed, margin)))] += 1
     return out
 

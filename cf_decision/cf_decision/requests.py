@@ -144,11 +144,11 @@ def request_text(
     me = state.me.positioning if state.me else None
     ball = state.ball
     parts = [f"request t={state.time} {decision.method}: {decision.why}"]
-    parts.append(f"me {me.x:.1f} {me.y:.1f}" if me else "me ?")
+    parts.append(f"me {_m(me.x)} {_m(me.y)}" if me else "me ?")
     if ball is not None and ball.positioning is not None:
         v = ball.velocity
-        speed = f" v {v.vx:.1f} {v.vy:.1f}" if v else ""
-        parts.append(f"ball {ball.positioning.x:.1f} {ball.positioning.y:.1f}{speed} age {ball.age or 0}")
+        speed = f" v {_m(v.vx)} {_m(v.vy)}" if v else ""
+        parts.append(f"ball {_m(ball.positioning.x)} {_m(ball.positioning.y)}{speed} age {ball.age or 0}")
     else:
         parts.append("ball ?")
     parts.append("claims " + " ".join(f"{n}:{eta}" for n, eta in sorted(claims.items())))
@@ -161,3 +161,9 @@ def request_text(
 def _receiver(announced: Announced) -> str:
     to = announced.action.to
     return str(to.player_number) if to is not None else "pt"
+
+
+def _m(value: float) -> str:
+    """A figure to a tenth, never "-0.0"."""
+    text = f"{value:.1f}"
+    return "0.0" if text == "-0.0" else text

@@ -93,5 +93,7 @@ def test_a_logged_request_tells_what_it_was_chosen_on():
         "request t=40 moveTo: meet the pass | me -10.0 3.0 | ball -12.0 2.5 v 8.0 -1.0 age 1"
         " | claims 4:12 9:3 | passes 4>7@31 6>pt@35 | (exec Player moveTo ...)"
     )
+    still = ball.model_copy(update={"velocity": Velocity(vx=-0.01, vy=0.0)})
+    assert "v 0.0 0.0 age" in request_text(state.model_copy(update={"ball": still}), run, {}, [], "(exec)")  # no -0.0
     blind = request_text(WorldState(time=3, game=Game(time=3)), run, {}, [], "(exec)")
     assert blind == "request t=3 moveTo: meet the pass | me ? | ball ? | claims  | passes  | (exec)"
