@@ -25,7 +25,7 @@ from pathlib import Path
 
 from cf_decision.policy import decide
 from cf_decision.receive import Announced, to_announce
-from cf_decision.requests import aim_text, same_request
+from cf_decision.requests import choice_text, same_request
 from cf_decision.set_piece import KICKING, SetPieceTaker
 from cf_decision.touch import LastTouch
 from cf_decision.without_ball import NEVER, state_eta
@@ -43,7 +43,7 @@ from cf_sim_backend.world import Params, Side
 class PolicyTeam:
     """Drives one side with the cf_decision policy, one skill per player at a time."""
 
-    def __init__(self, sim: Simulator, side: Side, seed: int, log_dir: Path | None = None, memory: bool = True):
+    def __init__(self, sim: Simulator, side: Side, seed: int, log_dir: Path | None = None):
         self.sim, self.side = sim, side
         self.rng = random.Random(seed)
         self.current: dict[int, tuple[tuple, object]] = {}
@@ -52,7 +52,6 @@ class PolicyTeam:
         self.team = sim.world.team_names[side]
         self.logs: dict[int, list[str]] = {}  # number -> the decision component's log lines
         self.log_dir = log_dir
-        self.memory = memory
         self.memories: dict[int, Memory] = {}  # number -> what he remembers (as the perception component)
         self.passes: dict[int, dict[int, Announced]] = {}  # hearer -> passer -> the pass he heard
         self.size = sum(1 for p in sim.world.players.values() if p.side is side)
@@ -63,8 +62,6 @@ class PolicyTeam:
             p.number: self.memories.setdefault(p.number, Memory(w.params)).recall(
                 observe(w, self.side, p.number, self.rng)
             )
-            if self.memory
-            else observe(w, self.side, p.number, self.rng)
             for p in w.players.values()
             if p.side is self.side
         }
@@ -89,8 +86,7 @@ class PolicyTeam:
             current = self.current.get(n)
             if current is None or not same_request(current[0], key):
                 if decision.method in KICKING:  # as the decision component logs a new way of playing the ball
-                    line = f"[{self.team}_{n}_decision]: t={st.time} {decision.method}: {decision.why}"
-                    self.logs.setdefault(n, []).append(line + aim_text(st, decision))
+                    self.logs.setdefault(n, []).append(f"[{self.team}_{n}_decision]: {choice_text(st, decision)}")
                 try:
                     skill = skill_for(decision.method, decision.action, self.side, w, me)
                 except SkillError:

@@ -38,7 +38,7 @@ from cf_lang.sexp import dumps
 
 from .policy import decide
 from .receive import Announced, to_announce
-from .requests import ActionRequests, aim_text, request_text
+from .requests import ActionRequests, choice_text, request_text
 from .set_piece import KICKING, SetPieceTaker
 from .situation import Decision, xy
 from .touch import LastTouch
@@ -160,7 +160,7 @@ class DecisionNode(GuardedNode, Node):
             if decision.method in KICKING:
                 # One line per new way of playing the ball: what a match analysis needs, a few a minute.
                 self.requests.stats.chose(decision.why)
-                self.get_logger().info(f"t={state.time} {decision.method}: {decision.why}{aim_text(state, decision)}")
+                self.get_logger().info(choice_text(state, decision))
             if self.log_requests:
                 self.get_logger().info(request_text(state, decision, claims, passes, self._exec(decision)))
             self._request(decision)

@@ -114,6 +114,12 @@ class ActionRequests:
 AIM_OPPONENTS_WITHIN = 30.0  # m from the ball: the opponents a kick's log line lists
 
 
+def choice_text(state: WorldState, decision: Decision) -> str:
+    """The line a decision logs for each new way of playing the ball: ``t=T method: why @ ...``
+    (what tools/rcss_ball_use.py reads back, on either back-end)."""
+    return f"t={state.time} {decision.method}: {decision.why}{aim_text(state, decision)}"
+
+
 def aim_text(state: WorldState, decision: Decision) -> str:
     """`` @ target X Y ball X Y opp X Y S, ...`` (own frame, as believed; S: the position's standard
     deviation, which grows while a player goes unseen): set against the game log, it tells a kick

@@ -39,11 +39,11 @@ from cf_sim_backend.rcss.belief import (
     MATCH_RUN,
     PLAYER_MEMORY,
     PLAYER_SIGMA_GROWTH,
+    surely_seen,
 )
-from cf_sim_backend.world import Params
+from cf_sim_backend.world import Params, norm_deg
 
 _KICK_OFFS = (PlayMode.KICK_OFF_OUR, PlayMode.KICK_OFF_OPP, PlayMode.BEFORE_KICK_OFF)
-_MARGIN = 10.0  # degrees inside the edge of the view: an object there is surely seen (as the belief)
 
 
 @dataclass
@@ -184,10 +184,8 @@ def _relative(state: WorldState, x: float, y: float, sigma: float) -> RelativePo
 
 
 def _should_see(state: WorldState, x: float, y: float) -> bool:
-    """Whether this cycle's perception would have shown an object at (x, y): well inside the view, or close."""
+    """Whether this cycle's perception would have shown an object at (x, y) (the belief's rule)."""
     me = state.me.positioning
-    d = _distance_to_me(state, x, y)
     head = (me.yaw or 0.0) + (state.me.head_angle or 0.0)
-    off = math.degrees(math.atan2(y - me.y, x - me.x) - head)
-    off = abs((off + 180.0) % 360.0 - 180.0)
-    return d < FEEL_DISTANCE - 0.5 or (off < VIEW_WIDTH / 2 - _MARGIN and 2.0 < d < 50.0)
+    off = norm_deg(math.degrees(math.atan2(y - me.y, x - me.x) - head))
+    return surely_seen(_distance_to_me(state, x, y), off, VIEW_WIDTH / 2, FEEL_DISTANCE)

@@ -33,7 +33,9 @@ class MatchLog:
 
     def cycle(self, snapshot: dict, events: list[str]) -> None:
         line = {**snapshot, "counts": self._sim.counts()}
-        self._write({**line, "events": events} if events else line)
+        if events:
+            line["events"] = events
+        self._write(line)
 
     def close(self, extra: dict | None = None) -> None:
         stats = {k: {s.value: v for s, v in d.items()} for k, d in self._sim.stats.items()}

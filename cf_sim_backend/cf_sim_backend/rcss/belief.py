@@ -408,10 +408,9 @@ class Belief:
         """Whether a see would show an object at ``track`` (well inside the cone, or close all around)."""
         me = self.me
         d = math.hypot(track.x - me.x, track.y - me.y)
-        close = float(self.server.get("visible_distance", 3.0)) - 0.5
-        half = HALF_VIEW.get(me.view_width, 60.0) - 10.0
-        ahead = abs(norm_deg(math.degrees(math.atan2(track.y - me.y, track.x - me.x)) - me.head)) < half
-        return me.sigma < 5.0 and (d < close or (ahead and 2.0 < d < 50.0))
+        off = norm_deg(math.degrees(math.atan2(track.y - me.y, track.x - me.x)) - me.head)
+        visible = float(self.server.get("visible_distance", 3.0))
+        return me.sigma < 5.0 and surely_seen(d, off, HALF_VIEW.get(me.view_width, 60.0), visible)
 
     def sent(self, msg: list) -> None:
         """Take a command we sent (parsed) into account: what a turn or a move will do to our pose, a kick to the ball.
@@ -528,6 +527,14 @@ class Belief:
                 )
         w.team_names = {side: self.team, side.other: self.opponent or "opponent"}
         return w
+
+
+def surely_seen(distance: float, off_head: float, half_view: float, visible_distance: float) -> bool:
+    """Whether an object ``distance`` m away, ``off_head`` degrees off the head, is surely shown: well
+    inside the view cone (10 degrees in from its edge, 2-50 m away) or well within the distance at
+    which everything around is felt. Not shown there, it is not where it was believed."""
+    inside = abs(off_head) < half_view - 10.0 and 2.0 < distance < 50.0
+    return distance < visible_distance - 0.5 or inside
 
 
 def sure_reach(reach: float, step: float = 2 * QUANT) -> float:
