@@ -24,8 +24,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import Outcome, ball_use, game
-from rcss_series import kick_events, match_stats, territory_of
+from rcss_ball_use import Outcome, ball_use, game, game_log
+from rcss_series import kick_events, shots_of, team_names, territory_of
 
 TOP = 12  # reasons listed; the rest are summed as "other"
 
@@ -49,7 +49,7 @@ class BackEnd:
             u.kept, u.lost = u.kept + o.kept, u.lost + o.lost
         self.cycles += sum(1 for _, mode, _, _ in frames if mode == "play_on")
         self.kicks += sum(1 for i, s, *_ in kick_events(frames) if s == side and frames[i][1] == "play_on")
-        self.shots += match_stats(next(iter(sorted(match.glob("*.rcg")))), side)["shots"][0]
+        self.shots += shots_of(frames)[side]
         us = territory_of(frames, side)["us"]
         self.held = [a + b for a, b in zip(self.held, us.held, strict=True)]
         self.teams += 1
@@ -60,14 +60,8 @@ class BackEnd:
 
 
 def teams_in(match: Path, wanted: list[str]) -> list[str]:
-    rcg = next(iter(sorted(match.glob("*.rcg"))), None)
-    if rcg is None:
-        raise FileNotFoundError(f"no game log (*.rcg) in {match}")
-    for line in rcg.read_text(errors="replace").splitlines():
-        if line.startswith("(team "):
-            names = line.strip("()").split()[2:4]
-            return [t for t in wanted if t in names]
-    return []
+    names = team_names(game_log(match)) or ()
+    return [t for t in wanted if t in names]
 
 
 def share(n: int, of: int) -> str:

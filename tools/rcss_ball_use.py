@@ -63,13 +63,19 @@ def decisions(match: Path, team: str) -> dict[int, list[tuple[int, str]]]:
     return out
 
 
+def game_log(match: Path) -> Path:
+    """A match directory's game log (``*.rcg``); FileNotFoundError if it has none."""
+    rcg = next(iter(sorted(match.glob("*.rcg"))), None)
+    if rcg is None:
+        raise FileNotFoundError(f"no game log (*.rcg) in {match}")
+    return rcg
+
+
 @functools.lru_cache(maxsize=4)
 def game(match: Path, team: str, counters: bool = False) -> tuple[list, str, float]:
     """A match's frames (read once; ``counters``: as ``read_rcg`` gives them), our side, and +1 or -1:
     the way our attack goes along x."""
-    rcg = next(iter(sorted(match.glob("*.rcg"))), None)
-    if rcg is None:
-        raise FileNotFoundError(f"no game log (*.rcg) in {match}")
+    rcg = game_log(match)
     side = side_of(rcg, team)
     return read_rcg(rcg, counters), side, 1.0 if side == "l" else -1.0
 

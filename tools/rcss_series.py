@@ -154,16 +154,12 @@ def match_stats(rcg: Path, our_side: str) -> dict:
     """Possession, shots, tackles, offsides and faults of both sides, and our idle cycles at the ball, from a game log."""
     frames = read_rcg(rcg, counters=True)
     possession = {"l": 0, "r": 0}
-    shots = {"l": 0, "r": 0}
     for _, mode, (bx, by), players in frames:
         if mode == "play_on" and players:
             nearest = min(players, key=lambda p: math.hypot(p[2] - bx, p[3] - by))
             if math.hypot(nearest[2] - bx, nearest[3] - by) < 3.0:
                 possession[nearest[0]] += 1
-    for _, side, _, x, y in kick_events(frames):
-        goal_x = GOAL_X if side == "l" else -GOAL_X
-        if math.hypot(goal_x - x, y) < 25.0:
-            shots[side] += 1
+    shots = shots_of(frames)
     theirs = "r" if our_side == "l" else "l"
     total = max(1, possession["l"] + possession["r"])
     calls = referee_calls(rcg)
@@ -182,13 +178,29 @@ def match_stats(rcg: Path, our_side: str) -> dict:
     }
 
 
-def side_of(rcg: Path, team: str) -> str:
-    """'l' or 'r': the side the game log's (team ...) line gives ``team``."""
+def shots_of(frames: list) -> dict[str, int]:
+    """Each side's shots in ``read_rcg``'s frames: its kicks from within 25 m of the goal it attacks."""
+    shots = {"l": 0, "r": 0}
+    for _, side, _, x, y in kick_events(frames):
+        goal_x = GOAL_X if side == "l" else -GOAL_X
+        if math.hypot(goal_x - x, y) < 25.0:
+            shots[side] += 1
+    return shots
+
+
+def team_names(rcg: Path) -> tuple[str, str] | None:
+    """The left and the right team's names, from the game log's first (team ...) line."""
     for line in rcg.read_text(errors="replace").splitlines():
         if line.startswith("(team "):
             words = line.strip("()").split()
-            return "l" if words[2] == team else "r"
-    return "l"
+            return words[2], words[3]
+    return None
+
+
+def side_of(rcg: Path, team: str) -> str:
+    """'l' or 'r': the side the game log's (team ...) line gives ``team``."""
+    names = team_names(rcg)
+    return "r" if names is not None and names[0] != team else "l"
 
 
 def referee_calls(rcg: Path) -> dict[str, int]:

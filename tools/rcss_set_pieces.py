@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import match_parser
+from rcss_ball_use import game_log, match_parser
 from rcss_series import THIRD, read_rcg, side_of
 
 KINDS = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick", "indirect_free_kick")
@@ -100,9 +100,10 @@ def main() -> int:
     args = ap.parse_args()
     pieces = []
     for match in args.matches:
-        rcg = next(iter(sorted(match.glob("*.rcg"))), None)
-        if rcg is None:
-            print(f"no game log (*.rcg) in {match}", file=sys.stderr)
+        try:
+            rcg = game_log(match)
+        except FileNotFoundError as exc:
+            print(exc, file=sys.stderr)
             return 2
         pieces += set_pieces(rcg, args.team, args.window)
     print(table(pieces, args.window) if pieces else "no set piece of ours ended in a kick")
