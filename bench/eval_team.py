@@ -7,7 +7,10 @@ share their times to the ball and the passes they ask for as the decision compon
 (a pass is heard in the next cycle).
 
     python bench/eval_team.py [--matches 10] [--players 11] [--half-cycles 1500] [--opponent chasers|ours]
-                              [--out DIR]
+                              [--out DIR] [--player-types 18]
+
+Each match's seed also draws rcssserver 19's heterogeneous player types (``player_types.py``),
+which both sides get by our coach's rule; ``--player-types 1`` plays with the default type only.
 
 ``--opponent ours`` plays the cf_decision team against itself. ``--out DIR`` keeps each match as
 ``DIR/match-SEED/``: the match log, its game log (``.rcg``, with rcssserver's command counters)
@@ -74,6 +77,7 @@ class PolicyTeam:
         asked = []
         for n, st in states.items():
             me = w.player(self.side, n)
+            mine = w.as_player(me)  # the skills read my type's parameters
             touch = self.touches.setdefault(n, LastTouch())
             touch.seen(st)
             mate_touched = touch.team is Team.OUR
@@ -88,12 +92,12 @@ class PolicyTeam:
                 if decision.method in KICKING:  # as the decision component logs a new way of playing the ball
                     self.logs.setdefault(n, []).append(f"[{self.team}_{n}_decision]: {choice_text(st, decision)}")
                 try:
-                    skill = skill_for(decision.method, decision.action, self.side, w, me)
+                    skill = skill_for(decision.method, decision.action, self.side, mine, me)
                 except SkillError:
                     self.current.pop(n, None)
                     continue
                 current = self.current[n] = (key, skill)
-            step = current[1].step(w, me)
+            step = current[1].step(mine, me)
             for cmd in step.commands:
                 if cmd[0] != "say":
                     self.sim.command(self.side, n, cmd[0], *cmd[1:])
@@ -115,12 +119,15 @@ class PolicyTeam:
             (self.log_dir / f"{self.team}_{n}_decision.log").write_text("\n".join(lines) + "\n")
 
 
-def play(seed: int, players: int, half_cycles: int, opponent: str = "chasers", out: Path | None = None) -> dict:
+def play(
+    seed: int, players: int, half_cycles: int, opponent: str = "chasers", out: Path | None = None, types: int = 18
+) -> dict:
     sim = Simulator(
         Params(half_cycles=half_cycles, auto_kick_off_cycles=5),
         team_sizes=(players, players),
         team_names=("CF", "CFB" if opponent == "ours" else "chasers"),
         seed=seed,
+        player_types=types,
     )
     match = out / f"match-{seed}" if out else None
     ours = PolicyTeam(sim, Side.LEFT, seed, match / "logs-CF" if match else None)
@@ -161,8 +168,14 @@ def main() -> None:
     parser.add_argument("--half-cycles", type=int, default=1500)
     parser.add_argument("--opponent", choices=("chasers", "ours"), default="chasers")
     parser.add_argument("--out", type=Path, help="keep each match's logs here (match-SEED/)")
+    parser.add_argument(
+        "--player-types", type=int, default=18, help="heterogeneous types as rcssserver 19's (1: all default)"
+    )
     args = parser.parse_args()
-    rows = [play(seed, args.players, args.half_cycles, args.opponent, args.out) for seed in range(args.matches)]
+    rows = [
+        play(seed, args.players, args.half_cycles, args.opponent, args.out, args.player_types)
+        for seed in range(args.matches)
+    ]
     them = "chasers" if args.opponent == "chasers" else "cf_decision"
     print(f"{args.players} v {args.players}, {2 * args.half_cycles} cycles a match, cf_decision (left) v {them}\n")
     print(f"| seed | cf_decision | {them} | result | our shots | our kicks | our possession |")

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from cf_sim_backend.rcss.coach import choose_types
+from cf_sim_backend.player_types import choose_types
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 from rcss_series import kick_off_types

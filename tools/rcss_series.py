@@ -35,7 +35,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from cf_sim_backend.rcss.coach import PlayerType
+from cf_sim_backend.player_types import PlayerType
+from cf_sim_backend.rcss.coach import player_type
 from cf_sim_backend.rcss.protocol import parse
 
 HERE = Path(__file__).resolve().parent
@@ -220,11 +221,11 @@ def kick_off_types(rcg: Path) -> tuple[dict[int, PlayerType], dict[tuple[str, in
     for line in rcg.read_text(errors="replace").splitlines():
         if line.startswith("(player_type "):
             try:
-                player_type = PlayerType.parse(parse(line))
+                offered = player_type(parse(line))
             except ValueError:
                 continue
-            if player_type is not None:
-                types[player_type.id] = player_type
+            if offered is not None:
+                types[offered.id] = offered
         elif line.startswith("(show ") and kick_off is None and int(line.split()[1]) > 0:
             kick_off = line
     played = {(s, int(n)): int(t) for s, n, t in re.findall(r"\(\((l|r) (\d+)\) (\d+)", kick_off or "")}

@@ -44,6 +44,7 @@ from cf_sim_backend.rcss.belief import (
 from cf_sim_backend.world import Params, norm_deg
 
 _KICK_OFFS = (PlayMode.KICK_OFF_OUR, PlayMode.KICK_OFF_OPP, PlayMode.BEFORE_KICK_OFF)
+_FAR_X, _FAR_Y = 70.0, 50.0  # m: the furthest an AbsolutePositioning may lie
 
 
 @dataclass
@@ -94,7 +95,8 @@ class Memory:
         for _ in range(elapsed):
             x, y, vx, vy, sigma = x + vx, y + vy, vx * self.decay, vy * self.decay, sigma + BALL_SIGMA_GROWTH
         self.ball = (x, y, vx, vy, sigma, when)
-        if t - when > BALL_MEMORY or _should_see(state, x, y):
+        if t - when > BALL_MEMORY or _should_see(state, x, y) or abs(x) > _FAR_X or abs(y) > _FAR_Y:
+            # (Beyond the ontology's positions it has long left the field: the referee has it.)
             self.ball = None
             return None
         return Ball(

@@ -28,7 +28,7 @@ from cf_lang.ontology import (
     Velocity,
     WorldState,
 )
-from cf_sim_backend.world import Side, World, direction_deg, distance, norm_deg
+from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, norm_deg
 
 VIEW_WIDTH = 120.0
 FEEL_DISTANCE = 3.0
@@ -70,9 +70,10 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
         ox, oy = to_own_frame(side, nx, ny)
         return _clip(ox, 70.0), _clip(oy, 50.0), sigma
 
-    # Every player here is of one type; as on rcssserver, a player is told his own and his
-    # team-mates' top speed, not the opponents'.
-    speed = round(world.params.top_speed * 10, 3)  # m/cycle -> m/s
+    def told_speed(p: SimPlayer) -> float:
+        """m/s: as on rcssserver, a player is told his own type and his team-mates', not the opponents'."""
+        return round(world.params_of(p).top_speed * 10, 3)
+
     sx, sy = to_own_frame(side, me.x + rng.gauss(0, SELF_SIGMA), me.y + rng.gauss(0, SELF_SIGMA))
     vx, vy = to_own_frame(side, me.vx * 10, me.vy * 10)  # m/cycle -> m/s
     myself = Player(
@@ -90,7 +91,7 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
         velocity=Velocity(vx=_clip(vx, 50.0), vy=_clip(vy, 50.0)),
         head_angle=math.radians(me.neck),
         stamina=round(me.stamina / world.params.stamina_max, 3),
-        top_speed=speed,
+        top_speed=told_speed(me),
     )
 
     ball = None
@@ -128,7 +129,7 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
                 relative=RelativePositioning(
                     distance=min(200.0, d), direction=math.radians(norm_deg(rel + me.neck)), sigma_distance=sigma
                 ),
-                top_speed=speed if known and p.side is side else None,
+                top_speed=told_speed(p) if known and p.side is side else None,
                 age=0,
             )
         )

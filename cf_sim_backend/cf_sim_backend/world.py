@@ -7,6 +7,7 @@ the right team towards -x; origin at the centre spot, y to the left.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from enum import StrEnum
@@ -60,6 +61,8 @@ class Params:
     player_rand: float = 0.1
     dash_power_rate: float = 0.006
     effort_max: float = 1.0  # the share of a dash's power a rested player gets
+    effort_min: float = 0.6  # (a heterogeneous type's, kept for the game log: the embedded stamina model
+    extra_stamina: float = 50.0  # has no effort decay and no extra stamina)
     side_dash_rate: float = 0.4  # a dash at 90 degrees off the body accelerates this share (rcssserver 14+)
     back_dash_rate: float = 0.7  # and one straight back this share
     kick_power_rate: float = 0.027
@@ -71,6 +74,7 @@ class Params:
     stamina_max: float = 8000.0
     stamina_inc_max: float = 45.0
     catchable_area: float = 1.3
+    catchable_area_l_stretch: float = 1.0  # a heterogeneous goalkeeper's longer catch
     tackle_dist: float = 2.0
     tackle_width: float = 1.25
     tackle_exponent: float = 6.0
@@ -136,6 +140,7 @@ class SimPlayer:
     neck: float = 0.0  # degrees, relative to body
     stamina: float = 8000.0
     goalie: bool = False
+    ptype: int = 0  # heterogeneous player type (World.types)
     kicks: int = 0  # kicks that reached the ball
     frozen: int = 0  # cycles left in which a tackle keeps the player from any body command
     # The commands the simulator carried out, counted as rcssserver counts them (by COUNTED): a kick
@@ -164,9 +169,20 @@ class World:
     last_touch: tuple[Side, int] | None = None
     mode_since: int = 0
     kick_off_side: Side = Side.LEFT
+    types: tuple[Params, ...] = ()  # the heterogeneous types' parameters by id (none: all of ``params``)
+    types_seed: int = 0  # the seed they were drawn with (player_types.hetero_types)
 
     def player(self, side: Side, number: int) -> SimPlayer:
         return self.players[(side, number)]
+
+    def params_of(self, p: SimPlayer) -> Params:
+        """Player ``p``'s parameters: his type's."""
+        return self.types[p.ptype] if p.ptype < len(self.types) else self.params
+
+    def as_player(self, p: SimPlayer) -> World:
+        """This world with ``p``'s parameters as its ``params`` (the same players and ball, not copies):
+        what the skills read, as the rcssserver adapter's belief gives them its own player's type."""
+        return dataclasses.replace(self, params=self.params_of(p))
 
 
 def norm_deg(angle: float) -> float:
@@ -216,12 +232,21 @@ def kick_off_position(side: Side, number: int, taker: bool) -> tuple[float, floa
 
 
 def world_from_snapshot(snap: dict, params: Params | None = None) -> World:
-    """Rebuild a World from Simulator.snapshot() data (what the state topic carries)."""
+    """Rebuild a World from Simulator.snapshot() data (what the state topic carries).
+
+    The types are drawn again from the seed and count the snapshot names (each player's row ends
+    with his type's id), so the 18 types' parameters need not travel every cycle.
+    """
+    from cf_sim_backend.player_types import hetero_types  # (it builds on this module)
+
     w = World(params=params or Params())
     w.time, w.mode = int(snap["t"]), str(snap["mode"])
     w.score = {Side.LEFT: int(snap["score"][0]), Side.RIGHT: int(snap["score"][1])}
     w.ball = SimBall(*(float(v) for v in snap["ball"]))
-    for side, number, x, y, vx, vy, body, neck, stamina, goalie in snap["players"]:
+    if "types" in snap:
+        w.types_seed, count = (int(v) for v in snap["types"])
+        w.types = hetero_types(w.types_seed, count, w.params)
+    for side, number, x, y, vx, vy, body, neck, stamina, goalie, *ptype in snap["players"]:
         p = SimPlayer(
             side=Side(side),
             number=int(number),
@@ -233,6 +258,7 @@ def world_from_snapshot(snap: dict, params: Params | None = None) -> World:
             neck=neck,
             stamina=float(stamina),
             goalie=bool(goalie),
+            ptype=int(ptype[0]) if ptype else 0,
         )
         w.players[p.key] = p
     w.half = int(snap.get("half", 1))

@@ -95,3 +95,18 @@ def test_the_ball_out_of_sight_rolls_on_until_it_should_be_seen_or_the_referee_m
     assert (kick_off.positioning.x, kick_off.positioning.y) == (0.0, 0.0)  # the centre spot
     w.time += BALL_MEMORY + 1
     assert look(sim, memory).ball is None
+
+
+def test_a_remembered_ball_that_rolls_beyond_any_position_the_language_has_is_forgotten():
+    """It rolled out of the field unseen; telling it on would be a WorldState the ontology refuses."""
+    sim = sim_with((Side.LEFT, 2, 0.0, 30.0, 90.0))
+    w, me, memory = sim.world, sim.world.player(Side.LEFT, 2), Memory(sim.world.params)
+    w.ball.x, w.ball.y, w.ball.vx, w.ball.vy = 0.0, 40.0, 0.0, 2.5
+    assert look(sim, memory).ball.age == 0
+    me.body = -90.0
+    told = []
+    for _ in range(10):
+        w.time += 1
+        ball = look(sim, memory).ball
+        told.append(None if ball is None else ball.positioning.y)
+    assert told[0] is not None and told[-1] is None and all(y is None or y <= 50.0 for y in told)

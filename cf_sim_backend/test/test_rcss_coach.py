@@ -7,7 +7,8 @@ import threading
 
 import pytest
 
-from cf_sim_backend.rcss.coach import ORDER, PlayerType, choose_types, run
+from cf_sim_backend.player_types import ORDER, PlayerType, choose_types
+from cf_sim_backend.rcss.coach import player_type, run
 from cf_sim_backend.rcss.protocol import parse
 
 # Three of the types rcssserver 19 sent in a recorded match (shared rcss traces), as sent.
@@ -30,7 +31,7 @@ TYPE_7 = (
 
 
 def read(text: str) -> PlayerType:
-    return PlayerType.parse(parse(text))
+    return player_type(parse(text))
 
 
 def make(type_id: int, speed: float, stamina: float = 45.0) -> PlayerType:

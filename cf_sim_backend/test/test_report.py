@@ -25,10 +25,15 @@ from cf_sim_backend.embedded.sim import Simulator
 from cf_sim_backend.world import Params, Side
 
 
-def play_logged_match(path: Path, extra_events: dict[int, str] | None = None) -> Path:
-    """A real 3 v 3 match of chasers, logged; ``extra_events`` adds referee events at given cycles."""
+def play_logged_match(path: Path, extra_events: dict[int, str] | None = None, types: int = 1) -> Path:
+    """A real 3 v 3 match of chasers, logged; ``extra_events`` adds referee events at given cycles;
+    ``types``: heterogeneous player types."""
     sim = Simulator(
-        Params(half_cycles=300, auto_kick_off_cycles=2), team_sizes=(3, 3), team_names=("blue", "red"), seed=4
+        Params(half_cycles=300, auto_kick_off_cycles=2),
+        team_sizes=(3, 3),
+        team_names=("blue", "red"),
+        seed=4,
+        player_types=types,
     )
     log = MatchLog(path, sim, 0.1)
     while not sim.finished:

@@ -23,8 +23,14 @@ class ActionNode(PlayerComponentNode):
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
         self.action = ActionService(
-            self.agent, lambda: (self.number, self.side), lambda: self.world, "the simulator has not started"
+            self.agent, lambda: (self.number, self.side), self._my_world, "the simulator has not started"
         )
+
+    def _my_world(self) -> World | None:
+        """The current world with my type's parameters: what the skills read (World.as_player)."""
+        if self.world is None:
+            return None
+        return self.world.as_player(self.world.player(self.side, self.number))
 
     def on_cycle(self, world: World) -> None:
         self._act(world)
@@ -35,7 +41,8 @@ class ActionNode(PlayerComponentNode):
         if not self.action.active:
             return
         skill = self.action.skill
-        step = skill.step(world, world.player(self.side, self.number))
+        me = world.player(self.side, self.number)
+        step = skill.step(world.as_player(me), me)
         for cmd in step.commands:
             self.feed.command({"side": self.side.value, "number": self.number, "cmd": cmd[0], "args": list(cmd[1:])})
         self.action.settle(step.status, step.reason, skill.name, skill.cycles)

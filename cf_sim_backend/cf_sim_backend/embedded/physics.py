@@ -40,14 +40,14 @@ def ball_distance(world: World, p: SimPlayer) -> float:
 
 
 def kickable(world: World, p: SimPlayer) -> bool:
-    return ball_distance(world, p) <= world.params.kickable_distance
+    return ball_distance(world, p) <= world.params_of(p).kickable_distance
 
 
 def dash(world: World, p: SimPlayer, power: float, direction: float = 0.0) -> None:
-    prm = world.params
+    prm = world.params_of(p)
     power = _clamp(power, -100.0, 100.0)
     cost = abs(power) * (2.0 if power < 0 else 1.0)
-    effort = 1.0 if p.stamina >= cost else 0.3  # an exhausted player barely accelerates
+    effort = prm.effort_max if p.stamina >= cost else 0.3  # an exhausted player barely accelerates
     p.stamina = max(0.0, p.stamina - cost)
     direction = _clamp(direction, -180.0, 180.0)
     accel = power * prm.dash_power_rate * effort * prm.dash_rate(direction)
@@ -56,9 +56,10 @@ def dash(world: World, p: SimPlayer, power: float, direction: float = 0.0) -> No
 
 
 def turn(world: World, p: SimPlayer, moment: float) -> None:
-    moment = _clamp(moment, -world.params.max_moment, world.params.max_moment)
+    prm = world.params_of(p)
+    moment = _clamp(moment, -prm.max_moment, prm.max_moment)
     speed = math.hypot(p.vx, p.vy)
-    p.body = norm_deg(p.body + moment / (1.0 + world.params.inertia_moment * speed))
+    p.body = norm_deg(p.body + moment / (1.0 + prm.inertia_moment * speed))
 
 
 def turn_neck(world: World, p: SimPlayer, angle: float) -> None:
@@ -72,7 +73,7 @@ def kick(world: World, p: SimPlayer, power: float, direction: float, rng: random
     With ``rng``, the kick gets rcssserver's noise: up to kick_rand x power share x (0.5..1 for the
     ball's place off the body and foot + 0.5..1 for its speed) m/cycle, in any direction.
     """
-    prm = world.params
+    prm = world.params_of(p)
     if not kickable(world, p):
         return False
     power = _clamp(power, 0.0, 100.0)
@@ -97,10 +98,10 @@ def kick(world: World, p: SimPlayer, power: float, direction: float, rng: random
 
 def catch(world: World, p: SimPlayer, direction: float) -> bool:
     """A goalkeeper in its own penalty area catches a ball in reach in that direction."""
-    prm = world.params
+    prm = world.params_of(p)
     if not p.goalie or not in_own_penalty_area(world, p):
         return False
-    if ball_distance(world, p) > prm.catchable_area:
+    if ball_distance(world, p) > prm.catchable_area * prm.catchable_area_l_stretch:
         return False
     ball_dir = direction_deg(p.x, p.y, world.ball.x, world.ball.y)
     if abs(norm_deg(ball_dir - (p.body + direction))) > 45.0:
@@ -166,8 +167,9 @@ def move_objects(world: World, rng: random.Random) -> None:
     prm = world.params
     _advance(world.ball, prm.ball_rand, prm.ball_decay, rng)
     for p in world.players.values():
-        _advance(p, prm.player_rand, prm.player_decay, rng)
-        p.stamina = min(prm.stamina_max, p.stamina + prm.stamina_inc_max)
+        own = world.params_of(p)
+        _advance(p, own.player_rand, own.player_decay, rng)
+        p.stamina = min(own.stamina_max, p.stamina + own.stamina_inc_max)
     collide(world)
 
 

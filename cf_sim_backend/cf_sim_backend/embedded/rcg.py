@@ -17,7 +17,8 @@ import sys
 from pathlib import Path
 
 from cf_sim_backend.embedded.report import read_log
-from cf_sim_backend.world import COUNTED
+from cf_sim_backend.player_types import hetero_types
+from cf_sim_backend.world import COUNTED, Params
 
 # Every play mode rcssserver 19 names (its PLAYMODE_STRINGS), in order.
 RCSS_PLAYMODES = (  # noqa: SIM905 - fifty names read better as text
@@ -57,29 +58,35 @@ def server_param(field: dict, cycle_seconds: float) -> str:
     return "(server_param " + "".join(f"({k} {_num(v)})" for k, v in params.items()) + ")"
 
 
-def player_param() -> str:
-    return "(player_param (player_types 1)(pt_max 1)(random_seed -1)(subs_max 3))"
+def player_param(types: int = 1, seed: int = -1) -> str:
+    return f"(player_param (player_types {types})(pt_max 1)(random_seed {seed})(subs_max 3))"
 
 
-def player_type() -> str:
-    params = {
-        "id": 0,
-        "player_speed_max": 1.05,
-        "stamina_inc_max": 45,
-        "player_decay": 0.4,
-        "inertia_moment": 5,
-        "dash_power_rate": 0.006,
-        "player_size": 0.3,
-        "kickable_margin": 0.7,
-        "kick_rand": 0.1,
-        "extra_stamina": 50,
-        "effort_max": 1,
-        "effort_min": 0.6,
-        "kick_power_rate": 0.027,
-        "foul_detect_probability": 0.5,
-        "catchable_area_l_stretch": 1,
-    }
-    return "(player_type " + "".join(f"({k} {_num(v)})" for k, v in params.items()) + ")"
+# A type's parameters in the order rcssserver 19 writes them (foul_detect_probability is fixed).
+TYPE_FIELDS = (
+    "player_speed_max",
+    "stamina_inc_max",
+    "player_decay",
+    "inertia_moment",
+    "dash_power_rate",
+    "player_size",
+    "kickable_margin",
+    "kick_rand",
+    "extra_stamina",
+    "effort_max",
+    "effort_min",
+    "kick_power_rate",
+)
+
+
+def player_type(type_id: int = 0, params: Params | None = None) -> str:
+    """A ``player_type`` line, its numbers to six significant digits as rcssserver writes them."""
+    params = params or Params()
+    values = {name: getattr(params, name) for name in TYPE_FIELDS}
+    values["foul_detect_probability"] = 0.5
+    values["catchable_area_l_stretch"] = params.catchable_area_l_stretch
+    text = "".join(f"({k} {v:.6g})" for k, v in values.items())
+    return f"(player_type (id {type_id}){text})"
 
 
 def rcss_mode(mode: str) -> str:
@@ -92,11 +99,12 @@ def show(cycle: dict) -> str:
     bx, by, bvx, bvy = cycle["ball"]
     parts = [f"(show {cycle['t']} ((b) {_num(bx)} {_num(-by)} {_num(bvx)} {_num(-bvy)})"]
     counts = cycle.get("counts", {})  # (logs written before the counters have none)
-    for side, number, x, y, vx, vy, body, neck, stamina, goalie in sorted(cycle["players"], key=lambda p: (p[0], p[1])):
+    for row in sorted(cycle["players"], key=lambda p: (p[0], p[1])):
+        side, number, x, y, vx, vy, body, neck, stamina, goalie, *ptype = row  # (older logs: no type)
         state = STAND | (GOALIE if goalie else 0)
         c = " ".join(str(n) for n in counts.get(f"{side}{number}", [0] * len(COUNTED)))
         parts.append(
-            f" (({side} {number}) 0 {state:#x} {_num(x)} {_num(-y)} {_num(vx)} {_num(-vy)} {_num(-body)} {_num(-neck)}"
+            f" (({side} {number}) {ptype[0] if ptype else 0} {state:#x} {_num(x)} {_num(-y)} {_num(vx)} {_num(-vy)} {_num(-body)} {_num(-neck)}"
             f" (v h 90) (fp 0 0) (s {_num(stamina)} 1 1 130600) (c {c}))"
         )
     return "".join(parts) + ")"
@@ -106,11 +114,13 @@ def export(log_path: Path, out: Path) -> Path:
     """Write the match log at ``log_path`` as a version 6 game log at ``out``."""
     header, cycles, _ = read_log(log_path)
     teams = header.get("teams", {"l": "left", "r": "right"})
+    seed, count = cycles[0].get("types", (-1, 1)) if cycles else (-1, 1)
+    types = hetero_types(seed, count) if count > 1 else (Params(),)
     lines = [
         "ULG6",
         server_param(header.get("field", {}), header.get("cycle_seconds", 0.1)),
-        player_param(),
-        player_type(),
+        player_param(count, seed),
+        *(player_type(type_id, params) for type_id, params in enumerate(types)),
     ]
     mode = team = None
     last_t = None

@@ -21,7 +21,7 @@ def frames(cycles: list[dict]) -> tuple[list[str], list[list]]:
             modes.append(c["mode"])
         players = [
             [0 if side == "l" else 1, number, round(x, 1), round(y, 1), round(body), 1 if goalie else 0]
-            for side, number, x, y, _vx, _vy, body, _neck, _stamina, goalie in c["players"]
+            for side, number, x, y, _vx, _vy, body, _neck, _stamina, goalie, *_type in c["players"]
         ]
         b = c["ball"]
         out.append(

@@ -6,6 +6,7 @@ import random
 
 from cf_sim_backend.embedded import physics, referee
 from cf_sim_backend.embedded.physics import CommandError
+from cf_sim_backend.player_types import PlayerType, choose_types, hetero_types
 from cf_sim_backend.world import COUNTED, Params, Side, SimBall, SimPlayer, World, direction_deg
 
 _KICK, _DASH, _TURN, _CATCH, _MOVE, _TURN_NECK, _TACKLE = (
@@ -37,6 +38,7 @@ class Simulator:
         team_sizes: tuple[int, int] = (11, 11),
         team_names: tuple[str, str] = ("left", "right"),
         seed: int = 0,
+        player_types: int = 1,
     ):
         self.world = World(params=params or Params())
         self.world.team_names = {Side.LEFT: team_names[0], Side.RIGHT: team_names[1]}
@@ -47,6 +49,8 @@ class Simulator:
                 self.world.players[(side, n)] = SimPlayer(
                     side=side, number=n, goalie=(n == 1), stamina=self.world.params.stamina_max
                 )
+        if player_types > 1:
+            self._hand_out_types(seed, player_types)
         referee.place_for_kick_off(self.world, Side.LEFT)
         self.rng = random.Random(seed)
         self._body: dict[tuple[Side, int], tuple[str, tuple[float, ...]]] = {}
@@ -60,6 +64,16 @@ class Simulator:
             "possession": {Side.LEFT: 0, Side.RIGHT: 0},
             "shots": {Side.LEFT: 0, Side.RIGHT: 0},
         }
+
+    def _hand_out_types(self, seed: int, count: int) -> None:
+        """rcssserver's heterogeneous types for ``seed``, given to each side by our coach's rule."""
+        w = self.world
+        w.types, w.types_seed = hetero_types(seed, count, w.params), seed
+        offer = [PlayerType.of(type_id, params) for type_id, params in enumerate(w.types)]
+        for side in Side:
+            numbers = [p.number for p in w.players.values() if p.side is side]
+            for number, type_id in choose_types(offer, numbers).items():
+                w.players[(side, number)].ptype = type_id
 
     @property
     def finished(self) -> bool:
@@ -225,7 +239,7 @@ class Simulator:
         """The true state of this cycle as plain data (the match log's and the state topic's format)."""
         w = self.world
         b: SimBall = w.ball
-        return {
+        snap = {
             "t": w.time,
             "mode": w.mode,
             "half": w.half,
@@ -243,7 +257,11 @@ class Simulator:
                     round(p.neck, 2),
                     round(p.stamina),
                     int(p.goalie),
+                    p.ptype,
                 ]
                 for p in w.players.values()
             ],
         }
+        if w.types:
+            snap["types"] = [w.types_seed, len(w.types)]
+        return snap

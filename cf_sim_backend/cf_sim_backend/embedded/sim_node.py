@@ -42,6 +42,13 @@ class SimParams(ComponentParams):
     sync_timeout: float = Field(
         0.5, gt=0, description="sync mode: seconds to wait for missing players before playing the cycle anyway"
     )
+    player_types: int = Field(
+        18,
+        ge=1,
+        le=100,
+        description="heterogeneous player types, drawn from the seed as rcssserver 19 draws them "
+        "(18, as rcssserver 19; 1: every player of the default type)",
+    )
     half_cycles: int = Field(3000, ge=1, description="cycles per half")
     halves: int = Field(2, ge=1, description="number of halves")
     auto_kick_off_cycles: int = Field(50, ge=0, description="cycles before the kick-off happens by itself")
@@ -61,6 +68,7 @@ class SimNode(GuardedNode, Node):
             team_sizes=(p.left_size, p.right_size),
             team_names=(p.left_name, p.right_name),
             seed=p.seed,
+            player_types=p.player_types,
         )
         self.rejected = 0
         self.log = MatchLog(Path(p.match_log), self.sim, p.cycle_period) if p.match_log else None

@@ -7,7 +7,7 @@ At the first kick-off the referee gives every player no coach has changed a type
 shirt-number order (``Team::assignPlayerTypes``): with rcssserver 19's 18 random types, each
 allowed once, that left our number 6 at 0.75 m/cycle where the default type runs 1.0. So the
 coach, before the kick-off, keeps the default type for the goalkeeper and hands out the fastest
-of the other types (each once) in the order ``ORDER`` gives: the centre forward, the centre backs,
+of the other types (each once) in the order ``player_types.ORDER`` gives: the centre forward, the centre backs,
 the wide forwards, ... The players read their new type's parameters (kickable area, dash rate,
 decay, ...) from the server's ``(change_player_type N T)``, so their skills follow it. The coach
 then says ``(bye)``: in synch mode a connected coach must answer every cycle, and it has nothing
@@ -20,55 +20,18 @@ import argparse
 import socket
 import sys
 import time
-from dataclasses import dataclass
 
+from cf_sim_backend.player_types import PlayerType, choose_types
 from cf_sim_backend.rcss.protocol import param_pairs, parse
-from cf_sim_backend.world import top_speed
 
-ORDER = (10, 3, 4, 9, 11, 7, 2, 5, 6, 8)  # who gets the fastest type first: the spine, then the wings
-DEFAULT_TYPE = 0
 NEEDED = {"id", "dash_power_rate", "effort_max", "player_decay", "player_speed_max", "stamina_inc_max"}
 
 
-@dataclass(frozen=True)
-class PlayerType:
-    """What the coach weighs of one heterogeneous type."""
-
-    id: int
-    speed: float  # m/cycle: the top speed repeated full dashes reach (capped at player_speed_max)
-    stamina_inc: float  # stamina recovered per cycle
-
-    @classmethod
-    def parse(cls, msg: list) -> PlayerType | None:
-        """From a parsed ``(player_type (id N) (name value) ...)`` message (None: a value it needs is
-        missing or not a number)."""
-        values = param_values(msg)
-        if not values.keys() >= NEEDED:
-            return None
-        speed = top_speed(
-            values["player_speed_max"], values["dash_power_rate"], values["player_decay"], values["effort_max"]
-        )
-        return cls(int(values["id"]), speed, values["stamina_inc_max"])
-
-
-def choose_types(types: list[PlayerType], players: list[int], goalie: int = 1, pt_max: int = 1) -> dict[int, int]:
-    """Shirt number -> type: the goalkeeper the default type, the others in ``ORDER`` (then by number)
-    the fastest left (of two as fast, the one that recovers more stamina), each type at most ``pt_max`` times.
-    """
-    left = {t.id: pt_max for t in types}
-    out: dict[int, int] = {}
-    if goalie in players and DEFAULT_TYPE in left:
-        out[goalie] = DEFAULT_TYPE
-        left[DEFAULT_TYPE] -= 1
-    ranked = sorted(types, key=lambda t: (-round(t.speed, 3), -t.stamina_inc, t.id))
-    order = [n for n in ORDER if n in players] + sorted(n for n in players if n not in ORDER and n != goalie)
-    for number in order:
-        pick = next((t for t in ranked if left[t.id] > 0), None)
-        if pick is None:
-            break
-        out[number] = pick.id
-        left[pick.id] -= 1
-    return out
+def player_type(msg: list) -> PlayerType | None:
+    """From a parsed ``(player_type (id N) (name value) ...)`` message (None: a value the coach needs
+    is missing or not a number)."""
+    values = param_values(msg)
+    return PlayerType.from_values(values) if values.keys() >= NEEDED else None
 
 
 def param_values(msg: list) -> dict[str, float]:
@@ -115,9 +78,9 @@ class CoachClient:
         if kind == "think":
             self.send("(done)")
         elif kind == "player_type":
-            player_type = PlayerType.parse(msg)
-            if player_type is not None:
-                self.types[player_type.id] = player_type
+            offered = player_type(msg)
+            if offered is not None:
+                self.types[offered.id] = offered
         elif kind == "player_param":
             values = param_values(msg)
             self.pt_max = int(values.get("pt_max", self.pt_max))
