@@ -11,6 +11,8 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from rcss_ball_use import ball_use, reason, table, territory, territory_table
+from rcss_belief_error import errors as belief_errors
+from rcss_belief_error import table as belief_table
 from rcss_goals import goal_rows, goals, summary
 from rcss_options import best_gain, bin_of, options
 from rcss_options import table as options_table
@@ -368,3 +370,39 @@ def test_an_embedded_match_is_read_by_the_same_tools_and_set_beside_another_back
     b.uses.clear()
     b.uses["something else"].kept = 1
     assert share_difference(a, b) == pytest.approx(1.0)
+
+
+def test_what_a_decision_believed_of_the_ball_is_set_against_the_game_logs_truth(tmp_path):
+    """The right side's player (his frame: x and y turned round) believed the ball 0.5 m off and its
+    velocity 0.1 m/cycle off; a remembered ball (age 2) and a still one are not counted."""
+    lines = ["ULG6", "(team 1 PYRUS CF 0 0)", "(playmode 1 play_on)"]
+    lines += [f"(show {t} ((b) {10.0 - t} 3 -1.0 0.5) ((r 9) 0 0x1 20 3 0 0 0 0))" for t in range(1, 6)]
+    lines.append("(show 6 ((b) 4 3 0 0) ((r 9) 0 0x1 20 3 0 0 0 0))")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    logs = tmp_path / "logs-CF"
+    logs.mkdir()
+
+    def request(t, ball, v, age=0):  # the ball in his frame: (-x, y) of the server's; velocity in m/s
+        return (
+            f"[INFO] [1.0] [CF_9_decision]: request t={t} pass: forward pass to team-mate 10 | me -20.0 3.0 | "
+            f"ball {ball[0]} {ball[1]} v {v[0]} {v[1]} age {age} | claims 9:0 | passes  | (exec Player pass)"
+        )
+
+    (logs / "CF_9_rcss_player.log").write_text(
+        "\n".join(
+            [
+                request(2, (-7.5, 3.0), (10.0, 5.0)),  # truth: (-8, 3), (1.0, 0.5) m/cycle: 0.5 m off, velocity exact
+                request(3, (-7.0, 3.0), (11.0, 5.0)),  # velocity 0.1 m/cycle off
+                request(4, (-6.0, 3.0), (10.0, 5.0), age=2),  # remembered: not counted
+                request(6, (-4.0, 3.0), (0.0, 0.0)),  # a still ball: not counted
+            ]
+        )
+        + "\n"
+    )
+    found = belief_errors(tmp_path)
+    assert [(round(e.distance, 1), round(e.position, 2), round(e.velocity, 2)) for e in found] == [
+        (12.5, 0.5, 0.0),
+        (13.0, 0.0, 0.1),
+    ]
+    rows = belief_table(found)
+    assert rows[2].startswith("| 10-20 m | 2 | 0.25 | 0.050 |")

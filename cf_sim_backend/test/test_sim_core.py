@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import random
+import statistics
 from dataclasses import replace
 
 import pytest
@@ -14,7 +15,7 @@ from cf_sim_backend.embedded import physics, referee
 from cf_sim_backend.embedded.chaser import chase_commands
 from cf_sim_backend.embedded.physics import CommandError
 from cf_sim_backend.embedded.sim import Simulator
-from cf_sim_backend.perception import observe
+from cf_sim_backend.perception import VELOCITY_FAR_SIGMA, observe
 from cf_sim_backend.world import Params, Side
 
 QUIET = Params(ball_rand=0.0, player_rand=0.0, kick_rand=0.0, auto_kick_off_cycles=1)
@@ -274,6 +275,22 @@ def test_perception_view_cone_noise_and_own_frame():
     far = next(p for p in noisy.players if p.player_number == 3)
     assert far.positioning.sigma_x == pytest.approx(0.05 * 10.0)
     assert unparse(state).startswith("(WorldState :time")
+
+
+@pytest.mark.parametrize(("away", "spread"), [(10.0, 0.05), (30.0, 0.15), (45.0, VELOCITY_FAR_SIGMA)])
+def test_the_balls_velocity_is_perceived_as_unsure_as_on_rcssserver(away, spread):
+    """noise / 4 x distance per axis (m/cycle), as far off as our rcssserver belief was (median 0.08
+    at 10-20 m, 0.17 at 20-40 m; tools/rcss_belief_error.py), and beyond 40 m, where rcssserver
+    tells no velocity, as far off as the belief's estimate from positions (0.9)."""
+    sim = sim_with((Side.LEFT, 3, 0.0, 0.0, 0.0))
+    w = sim.world
+    w.ball.x, w.ball.vx, w.ball.vy = away, -1.0, 0.5
+    rng = random.Random(3)
+    seen = [observe(w, Side.LEFT, 3, rng).ball.velocity for _ in range(400)]
+    assert seen[0].sigma_vx == pytest.approx(spread * 10)  # reported in m/s
+    errors = [v.vx / 10 + 1.0 for v in seen]
+    assert statistics.mean(errors) == pytest.approx(0.0, abs=spread / 4)
+    assert statistics.stdev(errors) == pytest.approx(spread, rel=0.15)
 
 
 def test_a_player_is_told_his_own_and_his_team_mates_top_speed_not_the_opponents():
