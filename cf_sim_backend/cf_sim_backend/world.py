@@ -176,8 +176,8 @@ class World:
         return self.players[(side, number)]
 
     def params_of(self, p: SimPlayer) -> Params:
-        """Player ``p``'s parameters: his type's."""
-        return self.types[p.ptype] if p.ptype < len(self.types) else self.params
+        """Player ``p``'s parameters: his type's (an unknown type: the default's)."""
+        return self.types[p.ptype] if 0 <= p.ptype < len(self.types) else self.params
 
     def as_player(self, p: SimPlayer) -> World:
         """This world with ``p``'s parameters as its ``params`` (the same players and ball, not copies):

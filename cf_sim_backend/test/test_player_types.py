@@ -100,3 +100,20 @@ def test_the_game_log_tells_every_type_and_each_players(tmp_path: Path):
     show = next(line for line in lines if line[0] == Symbol("show"))
     kinds = {(p[0][0].name, p[0][1]): p[1] for p in players(show)}
     assert kinds[("l", 1)] == 0 and len({t for (side, _), t in kinds.items() if side == "l"}) == 3
+
+
+@pytest.mark.parametrize("types", [["a", 18], [1], [1, 10**9], [1, 0], 5])
+def test_a_snapshot_with_malformed_types_is_refused_with_a_clear_error(types):
+    snap = Simulator(QUIET, team_sizes=(1, 1), seed=3, player_types=18).snapshot()
+    snap["types"] = types
+    with pytest.raises((ValueError, TypeError)):
+        world_from_snapshot(snap)
+
+
+def test_a_player_of_a_type_nobody_drew_plays_as_the_default_type():
+    sim = Simulator(QUIET, team_sizes=(1, 1), seed=3, player_types=18)
+    snap = sim.snapshot()
+    snap["players"][0][-1] = -1
+    snap["players"][1][-1] = 99
+    w = world_from_snapshot(snap)
+    assert all(w.params_of(p) is w.params for p in w.players.values())
