@@ -28,7 +28,8 @@ class Simulator:
 
     ``command(side, number, name, *args)`` queues a command for the coming
     cycle (one body command per player per cycle, plus ``turn_neck``);
-    ``step()`` plays the cycle and returns what the referee saw.
+    ``step()`` plays the cycle and returns what the referee saw. ``player_types`` above 1: that many
+    of rcssserver's heterogeneous types, drawn from ``seed`` (player_types.py).
     """
 
     def __init__(
