@@ -235,7 +235,7 @@ def run_distances(world: World, me: SimPlayer, dashes: int, speed: float | None 
     prm = world.params
     v, covered, out = math.hypot(me.vx, me.vy) if speed is None else speed, 0.0, [0.0]
     for _ in range(dashes):
-        v = min(prm.player_speed_max, v + 100.0 * prm.dash_power_rate)
+        v = min(prm.player_speed_max, v + 100.0 * prm.dash_power_rate * prm.effort_max)
         covered += v
         out.append(covered)
         v *= prm.player_decay
@@ -377,7 +377,7 @@ class Dribble(Skill):
         if distance(b.x, b.y, self.x, self.y) <= 1.5:
             return Step([], "done")
         if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
-            push = dribble_push(world, self.speed)
+            push = dribble_push(world, me, self.speed)
             follow = _go(world, me, b.x + b.vx, b.y + b.vy, 100.0)
             if self._pushed(world, me, push):
                 # Pushed already: run (or turn) after it. Kicking again cost a cycle, and on
@@ -414,6 +414,7 @@ class Dribble(Skill):
 
 
 OUTRUN = 0.2  # m/cycle: a ball faster than the push by more than this is not let run as the dribble's own
+REGAIN = 5  # cycles: a full-speed dribble's touch sends the ball no further than the dribbler then is
 DRIBBLE_FACING = 30.0  # degrees: a dribbler whose body is further off the way turns before he pushes,
 STILL = 0.4  # m/cycle: if the ball is slower than this (it stays in reach meanwhile)
 DODGE_ANGLES = (0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0)  # degrees off the way a dribble's touch may go
@@ -480,14 +481,26 @@ def _their_cycles(p: SimPlayer, path: list[tuple[float, float]]) -> int:
     return DODGE_LOOK + 2
 
 
-def dribble_push(world: World, speed: float) -> float:
-    """How fast a dribble's touch sends the ball (m/cycle): speed 70 about 0.9, 100 about 1.3.
+def dribble_push(world: World, me: SimPlayer, speed: float) -> float:
+    """How fast a dribble's touch sends the ball (m/cycle): speed 70 about 0.9, 100 about 1.3, but
+    above 70 never faster than the dribbler reaches it again REGAIN cycles after the touch.
 
     Up to 70 the ball stays within a step or two (close control); above it the ball runs ahead
-    of the dribbler, who reaches it again only after a few cycles at full dash (a runner's pace).
+    of the dribbler, who reaches it again after a few cycles at full dash (a runner's pace). A
+    fixed 1.3 m/cycle rolled 20 m: he needed 13-17 cycles to catch his own ball, and the other
+    side had it first more often than not (docs/performance.md, session 34).
     """
     share = 0.15 + 0.0025 * speed + 0.0025 * max(0.0, speed - 70.0)
-    return share * world.params.ball_accel_max
+    push = share * world.params.ball_accel_max
+    if speed <= 70.0:
+        return push
+    prm, b = world.params, world.ball
+    ahead = distance(me.x, me.y, b.x, b.y)
+    # This cycle goes to the touch (his speed carries him on), then REGAIN - 1 full dashes.
+    drift = math.hypot(me.vx, me.vy) * prm.player_decay
+    run = drift + run_distances(world, me, REGAIN - 1, drift * prm.player_decay)[-1]
+    rolls = (1.0 - prm.ball_decay**REGAIN) / (1.0 - prm.ball_decay)  # metres per m/cycle of push
+    return max(dribble_push(world, me, 70.0), min(push, (run + prm.kickable_distance - ahead) / rolls))
 
 
 def _rolling_along(ball, heading: float, speed: float, within: float = 20.0) -> bool:
