@@ -490,8 +490,7 @@ def dribble_push(world: World, me: SimPlayer, speed: float) -> float:
     fixed 1.3 m/cycle rolled 20 m: he needed 13-17 cycles to catch his own ball, and the other
     side had it first more often than not (docs/performance.md, session 34).
     """
-    share = 0.15 + 0.0025 * speed + 0.0025 * max(0.0, speed - 70.0)
-    push = share * world.params.ball_accel_max
+    push = _touch_speed(world, speed)
     if speed <= 70.0:
         return push
     prm, b = world.params, world.ball
@@ -500,7 +499,13 @@ def dribble_push(world: World, me: SimPlayer, speed: float) -> float:
     drift = math.hypot(me.vx, me.vy) * prm.player_decay
     run = drift + run_distances(world, me, REGAIN - 1, drift * prm.player_decay)[-1]
     rolls = (1.0 - prm.ball_decay**REGAIN) / (1.0 - prm.ball_decay)  # metres per m/cycle of push
-    return max(dribble_push(world, me, 70.0), min(push, (run + prm.kickable_distance - ahead) / rolls))
+    return max(_touch_speed(world, 70.0), min(push, (run + prm.kickable_distance - ahead) / rolls))
+
+
+def _touch_speed(world: World, speed: float) -> float:
+    """The ball's speed (m/cycle) a dribble's touch at ``speed`` aims at, before any cap."""
+    share = 0.15 + 0.0025 * speed + 0.0025 * max(0.0, speed - 70.0)
+    return share * world.params.ball_accel_max
 
 
 def _rolling_along(ball, heading: float, speed: float, within: float = 20.0) -> bool:

@@ -33,16 +33,17 @@ class ActionNode(PlayerComponentNode):
         return self.world.as_player(self.world.player(self.side, self.number))
 
     def on_cycle(self, world: World) -> None:
-        self._act(world)
+        self._act()
         if self.step is not None:  # tell the simulator we are done with this cycle (its sync mode)
             self.feed.command({"side": self.side.value, "number": self.number, "done": self.step})
 
-    def _act(self, world: World) -> None:
+    def _act(self) -> None:
+        """Step the current skill on this cycle's world (the base class has just set ``self.world``)."""
         if not self.action.active:
             return
         skill = self.action.skill
-        me = world.player(self.side, self.number)
-        step = skill.step(world.as_player(me), me)
+        mine = self._my_world()
+        step = skill.step(mine, mine.player(self.side, self.number))
         for cmd in step.commands:
             self.feed.command({"side": self.side.value, "number": self.number, "cmd": cmd[0], "args": list(cmd[1:])})
         self.action.settle(step.status, step.reason, skill.name, skill.cycles)
