@@ -10,11 +10,15 @@ import pytest
 
 SCRIPT = textwrap.dedent(
     """
+    import faulthandler
     import sys
     import rclpy
     from rclpy._rclpy_pybind11 import InvalidHandle
     from cf_commag.runtime import init, make_executor, spin
 
+    # A hang (seen once in CI, never reproduced) dumps every thread's stack and ends the probe,
+    # so the failure says where it hung.
+    faulthandler.dump_traceback_later(45, exit=True)
     init()
     node = rclpy.create_node("runtime_probe")
     executor = make_executor(sys.argv[1])
@@ -36,6 +40,6 @@ SCRIPT = textwrap.dedent(
 @pytest.mark.parametrize("kind", ["events", "single"])
 def test_work_of_a_destroyed_entity_is_skipped_and_the_process_goes_on(kind):
     done = subprocess.run([sys.executable, "-c", SCRIPT, kind], capture_output=True, text=True, timeout=60)
-    assert done.returncode == 0, done.stderr
+    assert done.returncode == 0, f"exit {done.returncode}\nstdout:\n{done.stdout}\nstderr:\n{done.stderr}"
     assert "ticks 3" in done.stdout
     assert "work of a destroyed entity skipped" in done.stderr
