@@ -317,3 +317,31 @@ def test_a_chaser_match_is_played_out():
         events += sim.step()
     assert sim.world.time == 1200
     assert sum(sim.stats["kicks"].values()) > 50
+
+
+def test_a_shot_is_a_kick_that_would_cross_the_goal_line_between_the_posts():
+    sim = sim_with((Side.LEFT, 9, 32.0, -2.0, 0.0))
+    w = sim.world
+
+    def kicked(x, y, vx, vy, side=Side.LEFT):
+        w.ball.x, w.ball.y, w.ball.vx, w.ball.vy = x, y, vx, vy
+        return referee.is_shot(w, side)
+
+    # 20.5 m out, hard into the far corner: 19 degrees off the goal's centre, still a shot.
+    assert kicked(32.0, -2.0, 2.5, 2.5 * (8.0 - -2.0) / 20.5)
+    assert kicked(32.0, -2.0, 2.5, 0.0)  # straight at the middle
+    assert not kicked(32.0, -2.0, 2.5, 2.5 * (15.0 - -2.0) / 20.5)  # wide of the post
+    assert not kicked(32.0, -2.0, 0.5, 0.0)  # rolls 8 m, stops short of the line
+    assert not kicked(20.0, 0.0, 2.7, 0.0)  # from 32.5 m: out of range
+    assert not kicked(32.0, -2.0, -2.5, 0.0)  # backwards
+    assert kicked(-32.0, 2.0, -2.5, 0.0, side=Side.RIGHT)  # the other side attacks -x
+
+
+def test_the_simulator_counts_a_corner_aimed_kick_as_a_shot():
+    sim = sim_with((Side.LEFT, 9, 32.0, -2.0, 0.0))
+    w = sim.world
+    w.ball.x, w.ball.y = 32.7, -2.0  # at his feet, straight ahead
+    aim = math.degrees(math.atan2(6.0 - -2.0, 52.5 - 32.7))  # the far corner, 22 degrees off his body
+    sim.command(Side.LEFT, 9, "kick", 100, aim)
+    sim.step()
+    assert sim.stats["shots"][Side.LEFT] == 1

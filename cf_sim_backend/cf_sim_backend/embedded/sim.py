@@ -7,7 +7,7 @@ import random
 from cf_sim_backend.embedded import physics, referee
 from cf_sim_backend.embedded.physics import CommandError
 from cf_sim_backend.player_types import PlayerType, choose_types, hetero_types
-from cf_sim_backend.world import COUNTED, Params, Side, SimBall, SimPlayer, World, direction_deg
+from cf_sim_backend.world import COUNTED, Params, Side, SimBall, SimPlayer, World
 
 _KICK, _DASH, _TURN, _CATCH, _MOVE, _TURN_NECK, _TACKLE = (
     COUNTED.index(n) for n in ("kick", "dash", "turn", "catch", "move", "turn_neck", "tackle")
@@ -218,11 +218,7 @@ class Simulator:
         w.last_touch = p.key
         self._taker = None
         self.stats["kicks"][p.side] += 1
-        goal_x = p.side.sign * w.params.field_length / 2
-        aim = direction_deg(w.ball.x, w.ball.y, goal_x, 0.0)
-        moving = direction_deg(0.0, 0.0, w.ball.vx, w.ball.vy)
-        shot = abs(w.ball.x - goal_x) < 30.0 and abs((aim - moving + 180) % 360 - 180) < 15
-        shot = shot and (w.ball.vx**2 + w.ball.vy**2) > 2.0
+        shot = referee.is_shot(w, p.side)
         if shot:
             self.stats["shots"][p.side] += 1
         self._offside[p.side] = referee.offside_players(w, p.side, p.number)
