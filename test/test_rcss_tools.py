@@ -179,8 +179,9 @@ def test_each_set_piece_of_ours_is_measured_by_its_kick_and_what_came_of_it(tmp_
         assert piece.kind == "kick_off" and piece.time == 2
         assert abs(piece.speed - 2.1) < 1e-9 and abs(piece.taker_gap - 1.0) < 1e-9  # a weak kick from 1 m
         assert piece.theirs_after == 18 and piece.furthest == 20.0  # theirs at t=20; ours up to 20 m
+        assert piece.near_at_loss == (1, 1)  # our 9 and their 3 by the ball at x = 20; our taker 20 m back
         text = set_piece_table([piece], 150)
-        assert "| kick_off | 1 | 2.10 | 1.00 | 18 | 20.0 | 1 |" in text
+        assert "| kick_off | 1 | 2.10 | 1.00 | 18 | 20.0 | 1 | 1 : 1 |" in text
     assert kind_of("kick_in_l", "l") == "kick_in" and kind_of("kick_in_r", "l") is None
     assert kind_of("free_kick_fault_l", "l") is None  # a fault is the other side's free kick, not ours
 
