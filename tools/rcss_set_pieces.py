@@ -38,7 +38,7 @@ class SetPiece:
     taker_gap: float  # m from the taker to the ball as he kicked
     theirs_after: int | None  # cycles until an opponent kicked it; None: not within the window
     furthest: float  # m up the field (our frame) the ball reached while ours
-    near_at_loss: tuple[int, int] | None = None  # ours, theirs within NEAR of the ball at their first touch
+    near_at_loss: tuple[int, int] | None  # ours, theirs within NEAR of the ball at their first touch; None: no touch
 
 
 def kind_of(mode: str, side: str) -> str | None:
