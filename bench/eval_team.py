@@ -105,10 +105,11 @@ class PolicyTeam:
                 self.current.pop(n, None)
         for passer, action in asked:
             for n, st in states.items():
-                if n != passer and st.ball and st.ball.positioning:
+                if st.ball and st.ball.positioning:  # the passer keeps his own, as the decision node does
                     ball = (st.ball.positioning.x, st.ball.positioning.y)
                     self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, st.time + 1)
-                    self.touches.setdefault(n, LastTouch()).played_by_mate()
+                    if n != passer:
+                        self.touches.setdefault(n, LastTouch()).played_by_mate()
 
     def write_logs(self) -> None:
         """Each player's decision log, where ``tools/rcss_match.py --out`` puts our players' logs."""

@@ -89,7 +89,7 @@ class DecisionNode(GuardedNode, Node):
             host=host,
         )
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
-        self.passes: dict[int, Announced] = {}  # team-mate number -> the last pass he announced
+        self.passes: dict[int, Announced] = {}  # team-mate number (or mine) -> the last pass he announced
         self.last_ball: tuple[float, float] | None = None  # where I believed the ball last
         self.perception: str | None = None
         self.subscription = None
@@ -166,6 +166,8 @@ class DecisionNode(GuardedNode, Node):
             self._request(decision)
         if to_announce(state, decision):  # every cycle until it is kicked: the kick is due the next
             self._tell_mates(self._exec(decision))
+            # Kept as team-mates keep it: the passer runs on after it (support.go_spot).
+            self.passes[self.number] = Announced(self.number, decision.action, self.last_ball, state.time + 1)
 
     def _request(self, decision: Decision) -> None:
         provider = self.agent.provider("Action", team=self.team, player_number=self.number)

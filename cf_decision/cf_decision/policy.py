@@ -17,7 +17,8 @@ What it does, in order:
   best open team-mate ahead, else carry it at full speed on an open run; else,
   in our half, a safe pass losing at most 3 m, received outside our penalty
   area, else clear it long; in theirs, shoot when within
-  LONG_SHOT_RANGE, else a safe pass that loses no ground, else kick it into
+  LONG_SHOT_RANGE, else a safe pass to a team-mate within that range and
+  nearer the goal (a set-up), else a safe pass that loses no ground, else kick it into
   space a team-mate reaches first, else dribble into space, else any safe
   pass, else take it on towards the goal;
 - at our set piece the player with the ball first looks for the opponents near
@@ -32,7 +33,8 @@ What it does, in order:
   theirs towards the goal; the team-mate a pass was
   announced to (to a point: the first to reach its path) sets off at once to
   where he meets it (once he sees it rolling: on the path it rolls), and waits
-  there facing the ball; in our half the second
+  there facing the ball; a midfielder or forward who has just passed in
+  their half runs on, onside, for the ball back (support.py); in our half the second
   fastest stands in his way to our goal, facing the ball; any player within
   tackling reach of an opponent's ball goes for it; the others hold their
   formation position, shifted with the ball, facing the ball; while a team-mate
@@ -65,7 +67,7 @@ from .situation import (
     their_ball,
     xy,
 )
-from .support import open_spot
+from .support import go_spot, open_spot
 from .with_ball import win_the_ball, with_ball
 from .without_ball import (
     MARK_BALL_X,
@@ -142,6 +144,11 @@ def decide(
         # is met, and wait there facing it until it is the nearest's to intercept.
         spot, cycles = meet
         return hold(me_pos, spot, f"meet the pass ({cycles} cycles)", MEET_SLACK, hurry=True)
+    line = offside_line(state, ball)
+    if role in (Role.MIDFIELDER, Role.FORWARD) and mode is PlayMode.PLAY_ON and not their_ball(state, ball):
+        go = go_spot(state, number, passes, line)
+        if go is not None:
+            return hold(me_pos, go, "pass and go: run on for the ball back", MEET_SLACK, hurry=True)
     if mode is PlayMode.KICK_OFF_OUR:
         # The taker may look before he kicks: a wide forward drifting in meanwhile closes the space
         # the kick-off's pass is meant for.
@@ -157,7 +164,6 @@ def decide(
         if mark is not None:
             why = f"{role.value}: mark the opponent at {mark[0]:.0f} {mark[1]:.0f}"
             return hold(me_pos, goal_side(mark), why, 1.0, tired(state))
-    line = offside_line(state, ball)
     x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1], offside_x=line)
     why = f"{role.value}: hold position"
     if role is Role.FORWARD and line is not None and not their_ball(state, ball) and ball[0] > -20.0:

@@ -9,16 +9,22 @@ times as often.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from cf_lang.ontology import FIELD, WorldState
 
 from . import reach
-from .situation import FIELD_HALF_LENGTH, dist, sides
+from .receive import Announced
+from .situation import FIELD_HALF_LENGTH, dist, sides, xy
 
 SUPPORT_STEP = 4.0  # m: the spots looked at lie this far around the formation spot
 SAFE_MARGIN = 2  # cycles: as the passer's: the pass reaches me this much sooner than any opponent
 ROOM_CAP = 6  # cycles of room beyond which more makes no difference
 STAY_BONUS = 3.0  # m up the field a spot within STAY of me is worth: no dithering between equals
 STAY = 2.0  # m
+GO_CYCLES = 15  # cycles after his pass that the passer runs on for the ball back
+GO_AHEAD = 10.0  # m: how far on he runs, at most
+GO_FROM_X = 0.0  # only after a pass from beyond this x (their half): in ours a lost return is a chance for them
 OFFSETS = [(dx, dy) for dx in (SUPPORT_STEP, 0.0, -SUPPORT_STEP) for dy in (0.0, SUPPORT_STEP, -SUPPORT_STEP)]
 
 
@@ -61,3 +67,30 @@ def open_spot(
         if best_key is None or key > best_key:
             best, best_key = spot, key
     return best
+
+
+def go_spot(
+    state: WorldState, number: int, passes: Sequence[Announced], line: float | None
+) -> tuple[float, float] | None:
+    """Where I run after my pass in their half (pass and go): GO_AHEAD up the field, onside of
+    ``line``, and in towards the middle, for the receiver to play the ball back ahead of me.
+
+    None: the latest pass is not mine, or not lately, not from their half, or a long kick; or
+    there is nowhere to go.
+
+    Against HELIOS base the wide forward who carried the ball on after our kick-off was alone
+    with two of theirs within 10 m when he lost it; the passer who stays put leaves the receiver
+    alone the same way (docs/performance.md, session 36).
+    """
+    if not passes or state.me is None or state.me.positioning is None:
+        return None
+    last = max(passes, key=lambda p: p.kicked)
+    elapsed = state.time - last.kicked
+    if last.passer != number or not 0 <= elapsed <= GO_CYCLES:
+        return None
+    if last.ball[0] < GO_FROM_X or last.action.power is not None:
+        return None
+    me = xy(state.me.positioning)
+    limit = FIELD_HALF_LENGTH - 6.0 if line is None else min(FIELD_HALF_LENGTH - 6.0, line - 0.5)
+    spot = (max(me[0], min(me[0] + GO_AHEAD, limit)), me[1] * 0.7)
+    return spot if dist(me, spot) >= 2.0 else None

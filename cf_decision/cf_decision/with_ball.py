@@ -17,6 +17,7 @@ from .situation import FIELD_HALF_LENGTH, GOAL, Decision, dist, play_mode, point
 SHOOT_RANGE = 22.0  # at a set piece, shoot from within this distance
 SHOT_RANGE = 30.0  # in play, consider shots from within this distance
 LONG_SHOT_RANGE = 25.0  # in play, with nothing better, shoot anyway from within this distance
+SET_UP_GAIN = 3.0  # m: a pass that sets up a shot is received at least this much nearer the goal
 SHOT_SPEED = 2.4  # m/cycle a shot is assumed to leave the foot with
 WIN_PASS_GAIN = 5.0  # m: a ball won in our half is passed on only this far up the field or further
 KEEP_GAIN = -3.0  # m: in our half a safe pass that loses no more ground than this keeps the ball
@@ -135,13 +136,17 @@ class PassChoice:
     number: int
     target: tuple[float, float] | None  # None: to the team-mate's feet
     gain: float  # metres up the field from the ball to where it is received
+    at: tuple[float, float]  # where it is received
 
 
-def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1e9) -> PassChoice | None:
+def best_pass(
+    state: WorldState, ball: tuple[float, float], min_gain: float = -1e9, to_shoot: bool = False
+) -> PassChoice | None:
     """The best pass a team-mate receives SAFE_MARGIN cycles before any opponent could, gaining ``min_gain``.
 
     Targets are team-mates' feet and points ahead of them (through balls); the score is how far
-    up the field the ball is received, plus a little for time to spare.
+    up the field the ball is received, plus a little for time to spare. ``to_shoot``: only balls
+    received within LONG_SHOT_RANGE of the goal count, the nearest the goal best (a set-up).
     """
     mates, opponents = sides(state)
     best, best_score = None, -1e9
@@ -166,9 +171,14 @@ def best_pass(state: WorldState, ball: tuple[float, float], min_gain: float = -1
             received = path[ours - 1]
             if received[0] - ball[0] < min_gain or in_our_box(received):
                 continue  # (in our area the keeper would take it: a back pass he may not catch)
-            score = received[0] + 0.5 * min(spare, 6) - 0.3 * abs(received[1]) * (received[0] > 30.0)
+            if to_shoot and dist(received, GOAL) > LONG_SHOT_RANGE:
+                continue
+            if to_shoot:
+                score = -dist(received, GOAL) + 0.5 * min(spare, 6)
+            else:
+                score = received[0] + 0.5 * min(spare, 6) - 0.3 * abs(received[1]) * (received[0] > 30.0)
             if score > best_score:
-                best, best_score = PassChoice(number, target if lead else None, received[0] - ball[0]), score
+                best, best_score = PassChoice(number, target if lead else None, received[0] - ball[0], received), score
     return best
 
 
@@ -274,6 +284,12 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
         # Near their goal every other way was lost nearly every time: a shot at least may go in.
         target, _ = shot_margin(state, ball)
         return Decision("shoot", act.Shoot(target=point(*target), power=100.0), "a hopeful shot")
+    set_up = best_pass(state, ball, to_shoot=True)
+    if set_up is not None and dist(set_up.at, GOAL) < dist(ball, GOAL) - SET_UP_GAIN:
+        # Out of shooting range (wide, or by the goal line), a team-mate in range gets it safely:
+        # against HELIOS base the wide forward carried the ball to their goal line and passed it
+        # back out of range (docs/performance.md, session 36).
+        return pass_to(set_up, "set up a shot")
     if safe is not None and safe.gain >= 0.0:
         # Keep the ball in their half: a close-control dribble there was lost 33 times in 34
         # against HELIOS base, while a ball the reach model gives a team-mate by 2 cycles on the

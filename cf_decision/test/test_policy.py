@@ -391,6 +391,23 @@ def test_in_their_half_a_safe_pass_that_loses_no_ground_comes_before_a_dribble()
     assert d.method == "dribble" and "space" in d.why  # a pass back is no better than carrying it on
 
 
+def test_by_their_goal_line_out_of_range_a_safe_pass_back_to_a_team_mate_in_range_sets_up_a_shot():
+    # Blue 9 carried the ball up the wing to (45, 28), 29 m from the goal; team-mate 7 waits at
+    # the edge of the area, 23 m out, and nobody of theirs is near the way.
+    keeper, far = opp(1, 51.0, 0.0, goalie=True), opp(4, 40.0, -8.0)
+    players = [mate(7, 30.0, 7.0), mate(6, 30.0, 24.0), keeper, far, opp(5, 47.0, 30.0)]
+    d = decide(state((45.0, 28.0), ball=(45.5, 28.0), players=players, number=9), 9, 11, {})
+    assert d.method == "pass" and d.why == "set up a shot to team-mate 7"
+    # A team-mate out of range is no set-up: the pass back to 6 only keeps the ball.
+    players = [mate(6, 30.0, 24.0), keeper, far, opp(5, 47.0, 30.0)]
+    d = decide(state((45.0, 28.0), ball=(45.5, 28.0), players=players, number=9), 9, 11, {})
+    assert "set up" not in d.why
+    # Nor one an opponent could reach first.
+    players = [mate(7, 30.0, 7.0), opp(3, 37.0, 17.0), keeper, far, opp(5, 47.0, 30.0)]
+    d = decide(state((45.0, 28.0), ball=(45.5, 28.0), players=players, number=9), 9, 11, {})
+    assert "set up" not in d.why
+
+
 def test_a_tired_player_walks_to_its_spot():
     st = state((-5.0, 20.0), ball=(30.0, 0.0), number=4)
     fresh = decide(st, 4, 11, {9: 1})

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from test_policy import at, mate, state
+from test_policy import at, mate, opp, state
 
 from cf_decision import reach
 from cf_decision.policy import decide
@@ -89,3 +89,24 @@ def test_once_the_ball_is_seen_rolling_the_pass_is_met_where_it_rolls_not_where_
     stale = st.model_copy(update={"ball": Ball(positioning=at(*seen), velocity=velocity, age=3)})
     old_spot, _ = meeting(stale, 6, passes)
     assert abs(old_spot[1]) < 0.01
+
+
+def test_after_his_pass_in_their_half_the_passer_runs_on_onside_for_the_ball_back():
+    # Blue 9 passed to 10 from (15, 12) a cycle ago; their second-last man stands at x = 22.5.
+    ball, me = (15.0, 12.0), (15.5, 12.5)
+    players = [mate(10, 14.0, 4.0), opp(5, 22.0, 10.0), opp(4, 22.5, 0.0), opp(1, 50.0, 0.0, goalie=True)]
+    st = state(me, (17.0, 9.0), players, number=9)
+    passes = [Announced(9, to(10), ball, 99)]
+    d = decide(st, 9, 11, {10: 3}, passes=passes)
+    assert d.method == "moveTo" and d.action.speed == 100.0 and "pass and go" in d.why
+    target = (d.action.target.x, d.action.target.y)
+    assert 20.0 < target[0] <= 22.5 - 0.5 and abs(target[1]) < abs(me[1])  # up, onside, in towards the middle
+    # Not after a team-mate's pass, nor long after mine, nor after a pass from our half, nor a long kick.
+    assert "pass and go" not in decide(st, 9, 11, {10: 3}, passes=[Announced(8, to(10), ball, 99)]).why
+    assert "pass and go" not in decide(st, 9, 11, {10: 3}, passes=[Announced(9, to(10), ball, 80)]).why
+    ours = (-15.0, 12.0)
+    assert "pass and go" not in decide(st, 9, 11, {10: 3}, passes=[Announced(9, to(10), ours, 99)]).why
+    long = act.Pass(target=at(40.0, 0.0), power=100.0)
+    assert "pass and go" not in decide(st, 9, 11, {10: 3}, passes=[Announced(9, long, ball, 99)]).why
+    # A defender stays where he is.
+    assert "pass and go" not in decide(state(me, (17.0, 9.0), players, number=3), 3, 11, {}, passes=passes).why
