@@ -1,7 +1,7 @@
 """A decision component talks with its team-mates in ACL: it tells them the pass it asks for, and
 sets off at once when a team-mate tells it a pass is coming.
 
-The real decision component of blue 2 runs as a process; its perception, its action provider and
+The real decision component of blue 7 runs as a process; its perception, its action provider and
 two team-mates' decision components are agents of the test, speaking the Framework Language over
 DDS as any component would.
 """
@@ -29,7 +29,7 @@ def world(time, me, ball, mates):
     players.append(Player(player_number=1, which_team=Team.OPP, positioning=at(50.0, 0.0), is_goalie=True))
     return WorldState(
         time=time,
-        me=Player(player_number=2, which_team=Team.OUR, positioning=at(*me)),
+        me=Player(player_number=7, which_team=Team.OUR, positioning=at(*me)),
         ball=Ball(positioning=at(*ball)),
         players=tuple(players),
         game=Game(time=time, play_mode=PlayMode.PLAY_ON),
@@ -55,7 +55,7 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
             "-p",
             f"team:={team}",
             "-p",
-            "number:=2",
+            "number:=7",
             "-p",
             "lease:=2.0",
             "-p",
@@ -65,7 +65,7 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     )
     common = {"team": team, "commag": f"/commag_{tag}", "lease": 2.0}
     perception = PerceptionService(
-        Agent(probe.node, name=f"perception_{tag}", service_class="WorldModel", player_number=2, **common), "not yet"
+        Agent(probe.node, name=f"perception_{tag}", service_class="WorldModel", player_number=7, **common), "not yet"
     )
     requests = []
 
@@ -73,7 +73,7 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
         requests.append(parse_expr(msg.content))
         responder.agree()
 
-    action = Agent(probe.node, name=f"action_{tag}", service_class="Action", player_number=2, **common)
+    action = Agent(probe.node, name=f"action_{tag}", service_class="Action", player_number=7, **common)
     action.serve("fipa-request", on_request)
     heard = {4: [], 9: []}
     mates = {
@@ -87,7 +87,7 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
         )
         for n in heard
     }
-    decision = f"{team}_2_decision"
+    decision = f"{team}_7_decision"
     probe.wait_kind(decision, "registered", timeout=60)
     clock = iter(range(1, 10**6))
 
@@ -108,17 +108,17 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
 
         return probe.spin_until(cycle, timeout=seconds, what=what)
 
-    # 1. Mate 4 has the ball at (-30, 0); blue 2 stands at (-20, -10) and waits.
+    # 1. Mate 4 has the ball at (-30, 0); blue 7 stands at (-20, -10) and waits.
     here, ball = (-20.0, -10.0), (-30.0, 0.0)
     team_mates = {4: (-30.5, 0.0), 9: (10.0, 0.0)}
-    play(lambda t: world(t, here, ball, team_mates), lambda: requests, "blue 2's first request")
-    # 2. Mate 4 tells it it passes to blue 2: blue 2 runs to meet the ball on its way, still at mate
+    play(lambda t: world(t, here, ball, team_mates), lambda: requests, "blue 7's first request")
+    # 2. Mate 4 tells it it passes to blue 7: blue 7 runs to meet the ball on its way, still at mate
     # 4's feet in its perception.
     to_me = Exec(
         "Player",
         "pass",
         {"playerNumber": 4, "whichTeam": Team.OUR},
-        act.Pass(to=Player(player_number=2, which_team=Team.OUR)),
+        act.Pass(to=Player(player_number=7, which_team=Team.OUR)),
     )
     told = AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=unparse(to_me))
     mates[4].send(told)
@@ -127,15 +127,15 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
         moves = [r.action for r in requests if isinstance(r, Exec) and r.method == "moveTo"]
         return next((m for m in moves if off_line((m.target.x, m.target.y), ball, here) < 1.0), None)
 
-    meet = play(lambda t: world(t, here, ball, team_mates), meeting, "blue 2 to run to meet the pass")
+    meet = play(lambda t: world(t, here, ball, team_mates), meeting, "blue 7 to run to meet the pass")
     assert meet.target.x > here[0] - 10.0 and meet.speed == 100.0  # towards the ball, in a hurry
     # With log_requests its log says what the run was chosen on: the pass heard, mate 4's claim.
     logged = [line for line in procs.log("decision").splitlines() if "request t=" in line and "moveTo:" in line]
-    run = [line for line in logged if " | passes 4>2@" in line]
+    run = [line for line in logged if " | passes 4>7@" in line]
     assert run and " | claims 4:0 | " in run[0], logged[-3:]
-    assert " | (exec Player moveTo :playerNumber 2 :whichTeam our " in run[0], run[0]
+    assert " | (exec Player moveTo :playerNumber 7 :whichTeam our " in run[0], run[0]
 
-    # Bad words from a team-mate are dropped, and blue 2 plays on.
+    # Bad words from a team-mate are dropped, and blue 7 plays on.
     for content, user in (
         ("(exec Player intercept :playerNumber 99999 :whichTeam our)", (("X-eta", "0"),)),
         ("(exec Player intercept :playerNumber 4 :whichTeam our)", (("X-eta", "soon"),)),
@@ -145,16 +145,28 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     ):
         mates[4].send(AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=content, user=user))
 
-    # 3. Now blue 2 has the ball, mate 9 stands free 20 m up the field: blue 2 passes, and tells
+    # 3. Now blue 7 has the ball, mate 9 stands free 20 m up the field: blue 7 passes, and tells
     # its team-mates; the text they get is the request the action provider got.
     mine = (0.0, 0.0)
     free = {4: (-30.0, 0.0), 9: (20.0, 5.0)}
 
     def told_pass():
-        return [m for m in heard[9] if (m.content or "").startswith("(exec Player pass :playerNumber 2")]
+        return [m for m in heard[9] if (m.content or "").startswith("(exec Player pass :playerNumber 7")]
 
-    its_word = play(lambda t: world(t, mine, (0.5, 0.0), free), told_pass, "blue 2 to tell its pass")[0]
+    its_word = play(lambda t: world(t, mine, (0.5, 0.0), free), told_pass, "blue 7 to tell its pass")[0]
     passes = [r for r in requests if isinstance(r, Exec) and r.method == "pass"]
     assert passes, requests
     assert parse_expr(its_word.content) == passes[-1] and its_word.performative is Performative.INFORM
-    assert any((m.content or "").startswith("(exec Player pass :playerNumber 2") for m in heard[4])
+    assert any((m.content or "").startswith("(exec Player pass :playerNumber 7") for m in heard[4])
+
+    # 4. The ball on its way to mate 9, blue 7 (a midfielder) runs on up the field for it back,
+    # at full speed: its own pass, kept as its team-mates keep it, tells it to.
+    rolling_on = (6.0, 1.5)
+
+    def going():
+        moves = [r.action for r in requests[len(passes) :] if isinstance(r, Exec) and r.method == "moveTo"]
+        return next((m for m in moves if m.target.x >= mine[0] + 8.0 and m.speed == 100.0), None)
+
+    play(lambda t: world(t, mine, rolling_on, free), going, "blue 7 to run on after its pass")
+    logged = [line for line in procs.log("decision").splitlines() if "moveTo: pass and go" in line]
+    assert logged and " | passes 4>7@" in logged[-1] and " 7>" in logged[-1], logged[-1:]
