@@ -92,5 +92,5 @@ def go_spot(
         return None
     me = xy(state.me.positioning)
     limit = FIELD_HALF_LENGTH - 6.0 if line is None else min(FIELD_HALF_LENGTH - 6.0, line - 0.5)
-    spot = (max(me[0], min(me[0] + GO_AHEAD, limit)), me[1] * 0.7)
+    spot = (min(me[0] + GO_AHEAD, limit), me[1] * 0.7)  # (beyond the line: back onside for it)
     return spot if dist(me, spot) >= 2.0 else None

@@ -101,6 +101,10 @@ def test_after_his_pass_in_their_half_the_passer_runs_on_onside_for_the_ball_bac
     assert d.method == "moveTo" and d.action.speed == 100.0 and "pass and go" in d.why
     target = (d.action.target.x, d.action.target.y)
     assert 20.0 < target[0] <= 22.5 - 0.5 and abs(target[1]) < abs(me[1])  # up, onside, in towards the middle
+    # Offside now (the ball went back to (13, 8), their second-last man stepped up to x = 14): back onside.
+    stepped_up = [mate(10, 14.0, 4.0), opp(5, 14.0, 16.0), opp(4, 12.0, 0.0), opp(1, 50.0, 0.0, goalie=True)]
+    d = decide(state(me, (13.0, 8.0), stepped_up, number=9), 9, 11, {10: 3}, passes=passes)
+    assert "pass and go" in d.why and d.action.target.x <= 14.0 - 0.5 < me[0]
     # Not after a team-mate's pass, nor long after mine, nor after a pass from our half, nor a long kick.
     assert "pass and go" not in decide(st, 9, 11, {10: 3}, passes=[Announced(8, to(10), ball, 99)]).why
     assert "pass and go" not in decide(st, 9, 11, {10: 3}, passes=[Announced(9, to(10), ball, 80)]).why
