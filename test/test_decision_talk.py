@@ -161,10 +161,10 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
 
     # 4. The ball on its way to mate 9, blue 7 (a midfielder) runs on up the field for it back,
     # at full speed: its own pass, kept as its team-mates keep it, tells it to.
-    rolling_on = (6.0, 1.5)
+    rolling_on, since = (6.0, 1.5), len(requests)
 
     def going():
-        moves = [r.action for r in requests[len(passes) :] if isinstance(r, Exec) and r.method == "moveTo"]
+        moves = [r.action for r in requests[since:] if isinstance(r, Exec) and r.method == "moveTo"]
         return next((m for m in moves if m.target.x >= mine[0] + 8.0 and m.speed == 100.0), None)
 
     play(lambda t: world(t, mine, rolling_on, free), going, "blue 7 to run on after its pass")
