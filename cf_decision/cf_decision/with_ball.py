@@ -171,10 +171,11 @@ def best_pass(
             received = path[ours - 1]
             if received[0] - ball[0] < min_gain or in_our_box(received):
                 continue  # (in our area the keeper would take it: a back pass he may not catch)
-            if to_shoot and dist(received, GOAL) > LONG_SHOT_RANGE:
-                continue
             if to_shoot:
-                score = -dist(received, GOAL) + 0.5 * min(spare, 6)
+                to_goal = dist(received, GOAL)
+                if to_goal > LONG_SHOT_RANGE:
+                    continue
+                score = -to_goal + 0.5 * min(spare, 6)
             else:
                 score = received[0] + 0.5 * min(spare, 6) - 0.3 * abs(received[1]) * (received[0] > 30.0)
             if score > best_score:
