@@ -94,7 +94,12 @@ def run_distance(dashes: int, speed: float = PLAYER_SPEED) -> float:
     """
     if dashes <= 0:
         return 0.0
-    return speed * (dashes - RUN_DECAY * (1.0 - RUN_DECAY**dashes) / (1.0 - RUN_DECAY))
+    if dashes < len(_RUN):
+        return speed * _RUN[dashes]  # (the model's inner loop: looked up, not raised to a power)
+    return speed * (dashes - RUN_DECAY / (1.0 - RUN_DECAY))
+
+
+_RUN = [k - RUN_DECAY * (1.0 - RUN_DECAY**k) / (1.0 - RUN_DECAY) for k in range(HORIZON + 2)]
 
 
 def cycles_to_path(
