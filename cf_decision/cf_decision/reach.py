@@ -1,8 +1,8 @@
 """Who reaches a rolling ball first (ROS-free): the model behind interceptions, passes and shots.
 
 The ball keeps BALL_DECAY of its speed every cycle; a player needs TURN_CYCLES to face it, then
-runs up to his top speed (PLAYER_SPEED unless the WorldState tells his) as rcssserver's dashes
-accelerate him from a standstill (:func:`run_distance`), and has the ball once within REACH of it (a
+runs up to his top speed a cycle (PLAYER_SPEED unless the WorldState tells his, START_LOSS metres
+behind that pace from a standstill at PLAYER_SPEED), and has the ball once within REACH of it (a
 goalkeeper catches within CATCH_REACH). Both back-ends follow rcssserver's physics, so one model
 serves both. Positions are in the player's own frame, speeds in metres per cycle.
 """
@@ -19,7 +19,7 @@ Point = tuple[float, float]
 BALL_DECAY = 0.94
 BALL_SPEED_MAX = 2.7  # the fastest one kick makes a still ball
 PLAYER_SPEED = 1.0  # rcssserver's default type: dash accel 0.6 a cycle, speed decays by 0.4: tops out at 1.0
-RUN_DECAY = 0.4  # rcssserver's default player_decay: a player keeps this share of his speed a cycle
+START_LOSS = 0.7  # metres lost to accelerating: 0.6, 1.44, 2.38, 3.35 after 1, 2, 3, 4 dashes
 TURN_CYCLES = 1
 REACH = 1.0
 CATCH_REACH = 1.5  # rcssserver's catchable area is 1.2 m by 1 m in the catch direction
@@ -83,32 +83,15 @@ def in_field(path: list[Point]) -> list[Point]:
     return path
 
 
-def run_distance(dashes: int, speed: float = PLAYER_SPEED) -> float:
-    """How far full dashes from a standstill take a player of top ``speed`` in ``dashes`` cycles.
-
-    rcssserver: each dash adds (1 - RUN_DECAY) of the top speed, and the speed decays by RUN_DECAY
-    a cycle, so the k-th cycle covers top speed x (1 - RUN_DECAY^k): 0.6, 1.44, 2.38, 3.35 m for
-    the default type, two thirds of a metre behind the top pace from the fourth cycle on. (A flat
-    0.7 m lost from the first cycle had a player covering 0.3 m in it, and a receiver gave up a
-    ball rolling by 1.3 m from him: docs/performance.md, session 37.)
-    """
-    if dashes <= 0:
-        return 0.0
-    if dashes < len(_RUN):
-        return speed * _RUN[dashes]  # (the model's inner loop: looked up, not raised to a power)
-    return speed * (dashes - RUN_DECAY / (1.0 - RUN_DECAY))
-
-
-_RUN = [k - RUN_DECAY * (1.0 - RUN_DECAY**k) / (1.0 - RUN_DECAY) for k in range(HORIZON + 2)]
-
-
 def cycles_to_path(
     player: Point, path: list[Point], reach: float = REACH, react: int = TURN_CYCLES, speed: float = PLAYER_SPEED
 ) -> int | None:
     """The first cycle in which ``player``, setting off after ``react`` cycles and running up to
     ``speed``, can have a ball on ``path``; None: not within the horizon."""
+    loss = START_LOSS * speed / PLAYER_SPEED  # a slower type also gets up to pace slower
     for n, (bx, by) in enumerate(path, start=1):
-        if math.hypot(bx - player[0], by - player[1]) - reach <= run_distance(n - react, speed):
+        run = max(0.0, speed * (n - react) - loss)
+        if math.hypot(bx - player[0], by - player[1]) - reach <= run:
             return n
     return None
 

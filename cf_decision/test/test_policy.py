@@ -335,9 +335,8 @@ def test_in_our_half_the_second_fastest_covers_the_way_from_an_opponents_ball_to
     assert (cover.action.target.x, cover.action.target.y) == (-23.0, 0.0)  # 3 m towards our goal
     there = decide(state((-23.5, 0.5), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})
     assert there.method == "turnToObject" and "cover" in there.why  # waits for him, facing the ball
-    # He came to him (1.6 m from the ball: 2 cycles, team-mate 4 a cycle sooner): tackle (or close in).
-    close = decide(state((-21.5, 0.5), ball=(-20.0, 0.0), players=players), 6, 11, {4: 1, 6: 7, 8: 12})
-    assert close.method == "pass" and "tackling reach" in close.why
+    close = decide(state((-21.5, 0.5), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})
+    assert close.method == "pass" and "tackling reach" in close.why  # he came to him: tackle (or close in)
     hold = decide(state((-15.0, 5.0), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 5: 4, 6: 7})
     assert hold.method not in ("intercept", "pass")  # third fastest: holds
     loose = decide(state((-15.0, 5.0), ball=(-20.0, 0.0)), 6, 11, {4: 3, 6: 7})

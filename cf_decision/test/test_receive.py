@@ -91,27 +91,6 @@ def test_once_the_ball_is_seen_rolling_the_pass_is_met_where_it_rolls_not_where_
     assert abs(old_spot[1]) < 0.01
 
 
-def test_full_dashes_from_a_standstill_cover_what_rcssserver_gives_them():
-    # rcssserver, default type: 0.6 m/cycle a dash, speed decaying by 0.4 a cycle.
-    assert [round(reach.run_distance(k), 2) for k in range(5)] == [0.0, 0.6, 1.44, 2.38, 3.35]
-    assert reach.run_distance(3, 0.8) == 0.8 * reach.run_distance(3)  # a slower type, in proportion
-    assert 0.66 < 10 - reach.run_distance(10) < 0.67  # then two thirds of a metre behind the top pace
-
-
-def test_a_pass_rolling_by_a_metre_and_a_half_away_is_met():
-    # Blue 9's pass into space rolls past blue 10, 1.3 m from him after its next cycle (as on
-    # rcssserver against HELIOS base, session 37): one dash takes him 0.6 m, enough to reach it.
-    start, me = (-3.0, 8.0), (0.4, -0.4)
-    passes = [Announced(9, act.Pass(target=at(8.0, -16.0)), start, 98)]
-    seen = (0.6, 0.9)
-    st = state(me, seen, [mate(9, -3.5, 8.5)], number=10)
-    rolling_ball = st.model_copy(
-        update={"ball": Ball(positioning=at(*seen), velocity=Velocity(vx=8.5, vy=-20.7), age=0)}
-    )
-    spot, cycles = meeting(rolling_ball, 10, passes)
-    assert cycles == 1 and math.dist(spot, me) < 1.0 + 0.6
-
-
 def test_after_his_pass_in_their_half_the_passer_runs_on_onside_for_the_ball_back():
     # Blue 9 passed to 10 from (15, 12) a cycle ago; their second-last man stands at x = 22.5.
     ball, me = (15.0, 12.0), (15.5, 12.5)
