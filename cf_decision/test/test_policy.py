@@ -90,7 +90,7 @@ def test_pass_forward_to_a_team_mate_who_gets_there_first():
 
 
 def test_a_pass_is_judged_with_the_receivers_top_speed_and_an_unknown_one_as_the_defaults():
-    marker = opp(4, 18.0, 12.0)
+    marker = opp(4, 16.0, 10.0)
     told = mate(10, 15.0, 10.0).model_copy(update={"top_speed": 10.0})
     slow = mate(10, 15.0, 10.0).model_copy(update={"top_speed": 8.0})  # 0.8 m/cycle
     choice = best_pass(state((0.0, 0.0), players=[mate(10, 15.0, 10.0), marker]), (0.5, 0.0))
