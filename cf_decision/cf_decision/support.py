@@ -18,7 +18,7 @@ from .receive import Announced
 from .situation import FIELD_HALF_LENGTH, dist, sides, xy
 
 SUPPORT_STEP = 4.0  # m: the spots looked at lie this far around the formation spot
-SAFE_MARGIN = 2  # cycles: as the passer's: the pass reaches me this much sooner than any opponent
+SAFE_MARGIN = 2  # cycles: the pass reaches me this much sooner than any opponent (a cycle more than the passer asks)
 ROOM_CAP = 6  # cycles of room beyond which more makes no difference
 STAY_BONUS = 3.0  # m up the field a spot within STAY of me is worth: no dithering between equals
 STAY = 2.0  # m
