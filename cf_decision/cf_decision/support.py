@@ -18,7 +18,8 @@ from .receive import Announced
 from .situation import FIELD_HALF_LENGTH, dist, sides, xy
 
 SUPPORT_STEP = 4.0  # m: the spots looked at lie this far around the formation spot
-SAFE_MARGIN = 2  # cycles: the pass reaches me this much sooner than any opponent (a cycle more than the passer asks)
+# The passer asks one cycle, but only his margin was measured at one (docs/performance.md, session 38).
+SAFE_MARGIN = 2  # cycles: the pass reaches me this much sooner than any opponent
 ROOM_CAP = 6  # cycles of room beyond which more makes no difference
 STAY_BONUS = 3.0  # m up the field a spot within STAY of me is worth: no dithering between equals
 STAY = 2.0  # m
