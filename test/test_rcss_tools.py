@@ -14,7 +14,7 @@ from rcss_ball_use import ball_use, reason, table, territory, territory_table
 from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import table as belief_table
 from rcss_goals import goal_rows, goals, summary
-from rcss_options import best_gain, bin_of, options
+from rcss_options import best_gain, bin_of, map_table, open_map, open_points, options
 from rcss_options import table as options_table
 from rcss_picture import picture
 from rcss_picture import table as picture_table
@@ -296,6 +296,27 @@ def test_the_truth_of_each_kick_says_how_far_up_a_ball_reached_a_team_mate_first
     ring = [reach.Runner((3.0 * math.cos(k * math.pi / 6), 3.0 * math.sin(k * math.pi / 6))) for k in range(12)]
     assert best_gain((0.0, 0.0), [(25.0, 0.0)], ring, 2.7, 2) is None and bin_of(None) == "none"
     assert bin_of(-3.0) == "< 0 m" and bin_of(12.0) == "10-20 m"
+
+
+def test_the_map_says_where_a_team_mate_standing_would_have_been_found(tmp_path):
+    """CF 9 kicks from the middle; PYRUS 3 stands on the point (10, 0): a team-mate there is not open,
+    one 10 m to the side of him is, and points behind the ball or beyond 40 m are out of range."""
+    where = {("l", 9): (0.0, 0.0), ("r", 3): (10.0, 0.0), ("r", 1): (50.0, 0.0)}
+    kicks_of = {key: 0 for key in where}
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 6):
+        kicks_of[("l", 9)] += t == 2
+        lines.append(f"(show {t} ((b) 0.5 0 0 0) {players_at(where, kicks_of)})")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    in_range, seen = open_map(tmp_path, "middle third", "CF", margin=1)
+    assert in_range[(10, 0)] == 1 and seen[(10, 0)] == 0
+    assert seen[(10, 10)] == 1
+    assert in_range[(-10, 0)] == 0 and in_range[(45, 0)] == 0
+    assert open_map(tmp_path, "our third", "CF") == ({}, {})
+    assert "| 0 | - |" in map_table(in_range, seen)  # x = -50: never in range
+    # Nobody else on the field: every point in range is open.
+    reachable, open_ = open_points((0.0, 0.0), [], 1)
+    assert reachable == open_ and (20, 0) in open_
 
 
 def goals_match(tmp: Path) -> Path:

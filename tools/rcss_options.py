@@ -1,6 +1,7 @@
 """What the game log's truth offered our player on the ball: the furthest up a kicked ball reaches a team-mate first.
 
     python tools/rcss_options.py MATCH_DIR [MATCH_DIR ...] [--team CF] [--speed 2.7] [--margin 2]
+    python tools/rcss_options.py MATCH_DIR [MATCH_DIR ...] --map "middle third" [--margin 1]
 
 A MATCH_DIR is what ``tools/rcss_match.py --game-log --out DIR`` writes (``rcss_series``: its
 ``match-N``); only its game log (``*.rcg``) is read. For each kick of ours in play, the decision's
@@ -11,6 +12,14 @@ received by a team-mate ``--margin`` cycles or more before any opponent could ha
 that point's x minus the ball's. One row per third of the field the kick was made in: how many
 kicks had no such ball at all, and how many had one gaining less than 0, 0-10, 10-20 and 20 m or
 more. It tells whether the team lacked options or chose badly among them (docs/performance.md).
+
+``--map THIRD`` asks instead where a team-mate would have been found: for our kicks in play from
+that third, on a 5 m grid of the field, each point's share of the kicks it was in range of (at
+least 5 m up from the ball, 4-40 m from it; "-": never) at which a pass to a team-mate standing
+still on it (kicked as the decision kicks a pass) reaches him ``--margin`` cycles or more before
+any opponent could have it. Offside is not judged: a point beyond their second-last man is
+open only to a runner who set off from onside. A map of low shares says no place to stand would
+have helped much: the opponents covered the space.
 """
 
 from __future__ import annotations
@@ -28,6 +37,8 @@ from cf_decision import reach
 from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
 
 THIRDS = ("our third", "middle third", "their third")
+GRID_X = tuple(range(-50, 51, 5))  # the map's points (m, our attack's direction)
+GRID_Y = tuple(range(-30, 31, 5))
 GAINS = ("none", "< 0 m", "0-10 m", "10-20 m", "20 m or more")
 
 
@@ -78,6 +89,55 @@ def options(match: Path, team: str = "CF", speed: float = 2.7, margin: int = 2) 
     return out
 
 
+def open_points(
+    ball: tuple[float, float], opponents: list[reach.Runner], margin: int
+) -> tuple[set[tuple[int, int]], set[tuple[int, int]]]:
+    """The grid points in range of a pass from ``ball`` (at least 5 m up, 4-40 m away), and of them
+    those where a team-mate standing still gets it (kicked as the decision kicks a pass)
+    ``margin`` cycles before any opponent."""
+    in_range, out = set(), set()
+    for x in GRID_X:
+        for y in GRID_Y:
+            d = math.dist(ball, (x, y))
+            if x < ball[0] + 5.0 or not 4.0 <= d <= 40.0:
+                continue
+            in_range.add((x, y))
+            path = reach.in_field(reach.kicked_path(ball, (x, y), reach.pass_speed(d)))
+            mine = reach.first_cycles(path, [reach.Runner((x, y))])
+            theirs = reach.first_cycles(path, opponents)
+            if mine is not None and (theirs is None or theirs - mine >= margin):
+                out.add((x, y))
+    return in_range, out
+
+
+def open_map(match: Path, third: str, team: str = "CF", margin: int = 1) -> tuple[Counter, Counter]:
+    """For our kicks in play from ``third`` in one match: at how many each grid point was in range,
+    and at how many open."""
+    frames, side, forward = game(match, team, counters=True)
+    in_range, seen = Counter(), Counter()
+    for i, s, _, _, _ in kick_events(frames):
+        _, mode, (bx, by), players = frames[i]
+        ball = (forward * bx, forward * by)
+        if s != side or mode != "play_on" or THIRDS[third_of(ball[0])] != third:
+            continue
+        opponents = [
+            reach.Runner((forward * p[2], forward * p[3]), bool(p[6] & GOALIE)) for p in players if p[0] != side
+        ]
+        reachable, open_ = open_points(ball, opponents, margin)
+        in_range.update(reachable)
+        seen.update(open_)
+    return in_range, seen
+
+
+def map_table(in_range: Counter, seen: Counter) -> str:
+    """Each grid point's open share (%) of the kicks it was in range of, rows from y = +30 down."""
+    rows = ["| y \\ x | " + " | ".join(str(x) for x in GRID_X) + " |", "|---:|" + "---:|" * len(GRID_X)]
+    for y in reversed(GRID_Y):
+        cells = (str(100 * seen[(x, y)] // in_range[(x, y)]) if in_range[(x, y)] else "-" for x in GRID_X)
+        rows.append(f"| {y} | " + " | ".join(cells) + " |")
+    return "\n".join(rows)
+
+
 def table(counts: Counter) -> str:
     rows = ["| where the ball was | kicks | " + " | ".join(GAINS) + " |", "|---|---:|" + "---:|" * len(GAINS)]
     for third in THIRDS:
@@ -91,7 +151,18 @@ def main() -> int:
     ap = match_parser(__doc__)
     ap.add_argument("--speed", type=float, default=2.7, help="m/cycle the ball leaves the foot with")
     ap.add_argument("--margin", type=int, default=2, help="cycles a team-mate must be first by")
+    ap.add_argument("--map", choices=THIRDS, help="instead: where a team-mate standing would have been found")
     args = ap.parse_args()
+    if args.map:
+        in_range, seen = Counter(), Counter()
+        for match in args.matches:
+            reachable, open_ = open_map(match, args.map, args.team, args.margin)
+            in_range, seen = in_range + reachable, seen + open_
+        print(
+            f"Our kicks from the {args.map}: the share (%) of those in range at which a team-mate on the point was open"
+        )
+        print(map_table(in_range, seen))
+        return 0
     total: Counter = Counter()
     for match in args.matches:
         total += options(match, args.team, args.speed, args.margin)
