@@ -280,15 +280,20 @@ def test_each_sides_top_speed_is_read_from_the_types_its_players_kick_off_with(t
     assert top_speeds(tmp_path / "m.rcg", "l") is None  # a log without types
 
 
-def test_the_truth_of_each_kick_says_how_far_up_a_ball_reached_a_team_mate_first(tmp_path):
-    """CF 9 on the ball in the middle, CF 10 25 m up with nobody near: a ball gains 20 m or more."""
-    where = {("l", 9): (0.0, 0.0), ("l", 10): (25.0, 0.0), ("r", 3): (-30.0, 20.0), ("r", 1): (50.0, 0.0)}
+def write_one_kick(tmp_path: Path, where: dict) -> None:
+    """A game log of five cycles in play, everyone standing ``where``; CF 9 kicks the ball (at 0.5, 0) at t = 2."""
     kicks_of = {key: 0 for key in where}
     lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
     for t in range(1, 6):
         kicks_of[("l", 9)] += t == 2
         lines.append(f"(show {t} ((b) 0.5 0 0 0) {players_at(where, kicks_of)})")
     (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+
+
+def test_the_truth_of_each_kick_says_how_far_up_a_ball_reached_a_team_mate_first(tmp_path):
+    """CF 9 on the ball in the middle, CF 10 25 m up with nobody near: a ball gains 20 m or more."""
+    where = {("l", 9): (0.0, 0.0), ("l", 10): (25.0, 0.0), ("r", 3): (-30.0, 20.0), ("r", 1): (50.0, 0.0)}
+    write_one_kick(tmp_path, where)
     counts = options(tmp_path, "CF")
     assert counts == {("middle third", "20 m or more"): 1}
     assert "| middle third | 1 | 0 | 0 | 0 | 0 | 1 |" in options_table(counts)
@@ -302,12 +307,7 @@ def test_the_map_says_where_a_team_mate_standing_would_have_been_found(tmp_path)
     """CF 9 kicks from the middle; PYRUS 3 stands on the point (10, 0): a team-mate there is not open,
     one 10 m to the side of him is, and points behind the ball or beyond 40 m are out of range."""
     where = {("l", 9): (0.0, 0.0), ("r", 3): (10.0, 0.0), ("r", 1): (50.0, 0.0)}
-    kicks_of = {key: 0 for key in where}
-    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
-    for t in range(1, 6):
-        kicks_of[("l", 9)] += t == 2
-        lines.append(f"(show {t} ((b) 0.5 0 0 0) {players_at(where, kicks_of)})")
-    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    write_one_kick(tmp_path, where)
     in_range, seen = open_map(tmp_path, "middle third", "CF", margin=1)
     assert in_range[(10, 0)] == 1 and seen[(10, 0)] == 0
     assert seen[(10, 10)] == 1
