@@ -14,6 +14,7 @@ from rcss_ball_use import ball_use, reason, table, territory, territory_table
 from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import table as belief_table
 from rcss_goals import goal_rows, goals, summary
+from rcss_keeper import HEADER, row, shots
 from rcss_options import best_gain, bin_of, map_table, open_map, open_points, options
 from rcss_options import table as options_table
 from rcss_picture import picture
@@ -201,11 +202,11 @@ def test_the_opponents_a_decision_believed_are_set_against_the_game_logs_truth(t
     assert "| forward pass to team-mate | 2 | 2 | 1 | 50% |" in picture_table(rows, 40.0, 3.0)
 
 
-def players_at(where: dict, kicks_of: dict) -> str:
-    """A show line's players at (x, y), with their kick counters; r 1 is a goalkeeper (state 0x9, as
-    rcssserver writes it: standing and goalie; 0x2 is a kick)."""
+def players_at(where: dict, kicks_of: dict, goalies: tuple = (("r", 1),)) -> str:
+    """A show line's players at (x, y), with their kick counters; ``goalies`` are goalkeepers (state
+    0x9, as rcssserver writes it: standing and goalie; 0x2 is a kick)."""
     return " ".join(
-        f"(({side} {n}) 0 {'0x9' if (side, n) == ('r', 1) else '0x1'} {x} {y} 0 0 0 0 (v h 120) (fp 0 0) "
+        f"(({side} {n}) 0 {'0x9' if (side, n) in goalies else '0x1'} {x} {y} 0 0 0 0 (v h 120) (fp 0 0) "
         f"(s 8000 1 1 130600) (c {kicks_of[(side, n)]} 0 0 0 0 0 0 0 0 0 0))"
         for (side, n), (x, y) in where.items()
     )
@@ -428,3 +429,39 @@ def test_what_a_decision_believed_of_the_ball_is_set_against_the_game_logs_truth
     ]
     rows = belief_table(found)
     assert rows[2].startswith("| 10-20 m | 2 | 0.25 | 0.050 |")
+
+
+def write_shot(tmp_path: Path, keeper: tuple[float, float], aim_y: float) -> Path:
+    """PYRUS 9 shoots from (-35, 0) at 2.5 m/cycle towards (-52.5, aim_y); CF's goalkeeper stands
+    still at ``keeper``; the referee calls the goal once the ball is over the line."""
+    where = {("l", 1): keeper, ("r", 9): (-35.5, 0.0)}
+    kicks_of = {key: 0 for key in where}
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    x, y, mode = -35.0, 0.0, "play_on"
+    heading = math.atan2(aim_y, -17.5)
+    vx, vy = 2.5 * math.cos(heading), 2.5 * math.sin(heading)
+    for t in range(1, 14):
+        if t == 2:
+            kicks_of[("r", 9)] += 1
+        if t >= 2:
+            x, y, vx, vy = x + vx, y + vy, vx * reach.BALL_DECAY, vy * reach.BALL_DECAY
+        if x < -52.5 and mode == "play_on":
+            mode = "goal_r"
+            lines.append(f"(playmode {t} goal_r)")
+        lines.append(f"(show {t} ((b) {x} {y} 0 0) {players_at(where, kicks_of, goalies=(('l', 1),))})")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    return tmp_path
+
+
+def test_the_keeper_tool_tells_a_shot_he_could_reach_from_one_nobody_could(tmp_path):
+    """A shot into the corner with our goalkeeper 6 m across the goal is not his to reach (a goal),
+    though it is from his guard spot on the line to the ball; one straight at him is his."""
+    (far := tmp_path / "far").mkdir()
+    (near := tmp_path / "near").mkdir()
+    wide = shots(write_shot(far, (-51.0, -6.0), 6.0))
+    assert len(wide) == 1 and wide[0].goal and not wide[0].reached and wide[0].from_spot
+    assert wide[0].off_spot > 5.0
+    straight = shots(write_shot(near, (-50.0, 0.0), 0.0))
+    assert len(straight) == 1 and straight[0].reached and straight[0].from_spot
+    assert "| far | 1 | 1 | 0 | 1 |" in row("far", wide) and HEADER.startswith("| match |")
+    assert row("none", []) == "| none | 0 | 0 | - | - | - |"

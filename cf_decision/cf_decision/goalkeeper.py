@@ -43,16 +43,20 @@ def goalkeeper(
         if in_area and to_goal < RUSH_DISTANCE and opponent_on_ball(state, ball):
             # One on one: from the line he could not cover the goal, so close the shooter down.
             return Decision("intercept", act.Intercept(), "one on one: close the shooter down")
-        # Stand on the line from the goal centre to the ball, further out the further the ball:
-        # at the line a shot from 10 m passes him out of reach on either side.
-        out = max(2.0, min(KEEPER_OUT_MAX, KEEPER_OUT_SHARE * to_goal))
-        angle = math.atan2(ball[1] - OWN_GOAL[1], ball[0] - OWN_GOAL[0])
-        spot = (OWN_GOAL[0] + out * math.cos(angle), OWN_GOAL[1] + out * math.sin(angle))
+        spot = guard_spot(ball)
     else:
         spot = (OWN_GOAL[0] + 2.0, 0.0)
     if dist(me, spot) > 1.0:
         return Decision("moveTo", act.MoveTo(target=point(*spot), speed=80.0), "guard the goal")
     return Decision("turnToDirection", act.TurnToDirection(direction=0.0), "face the field")
+
+
+def guard_spot(ball: tuple[float, float]) -> tuple[float, float]:
+    """Where the goalkeeper guards the goal: on the line from its centre to the ball, further out the
+    further the ball (at the line a shot from 10 m passes him out of reach on either side)."""
+    out = max(2.0, min(KEEPER_OUT_MAX, KEEPER_OUT_SHARE * dist(ball, OWN_GOAL)))
+    angle = math.atan2(ball[1] - OWN_GOAL[1], ball[0] - OWN_GOAL[0])
+    return (OWN_GOAL[0] + out * math.cos(angle), OWN_GOAL[1] + out * math.sin(angle))
 
 
 def catch(state: WorldState, me: tuple[float, float], ball: tuple[float, float]) -> Decision:

@@ -1,0 +1,121 @@
+"""How our goalkeeper stood at the opponents' shots on target: which of them were his to reach.
+
+    python tools/rcss_keeper.py MATCH_DIR [MATCH_DIR ...] [--team CF]
+
+A MATCH_DIR is what ``tools/rcss_match.py --game-log --out DIR`` writes (``rcss_series``: its
+``match-N``); only its game log (``*.rcg``) is read. A shot on target is an opponent's kick in play
+from within SHOT_RANGE of our goal (the last of his touches in a row) whose ball, rolling on as it
+left the foot, would cross our goal line between the posts. For each, the decision's reach model
+(``cf_decision.reach``: a goalkeeper's catch reach, setting off a cycle after the ball starts to
+roll) says whether our goalkeeper could have had it before it crossed from where he stood, and from
+the spot the decision sends him to guard the goal (``cf_decision.goalkeeper.guard_spot``, for the
+ball where it was kicked); and how far he stood from that spot. One row per match: it tells a
+goalkeeper out of position from shots nobody could stop (docs/performance.md).
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rcss_ball_use import game, match_parser
+from rcss_series import GOAL_X, kick_events
+
+from cf_decision import reach
+from cf_decision.goalkeeper import guard_spot
+from cf_lang.ontology import FIELD
+from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
+
+SHOT_RANGE = 30.0  # m from our goal's centre: a kick from further is not counted as a shot
+TOUCHES_APART = 2  # cycles: a kicker's touches this close together are one kick (the shot is the last)
+
+
+@dataclass(frozen=True)
+class Shot:
+    time: int
+    goal: bool  # a goal followed before anyone kicked the ball again (within twice its time to the line)
+    reached: bool  # the goalkeeper could have had it from where he stood
+    from_spot: bool  # ... from his guard spot
+    off_spot: float  # m he stood from it
+
+
+def shots(match: Path, team: str = "CF") -> list[Shot]:
+    """The opponents' shots on target at our goal in one match (x in our attack's direction)."""
+    frames, side, forward = game(match, team, counters=True)
+    events = kick_events(frames)
+    out = []
+    for k, (i, s, number, _, _) in enumerate(events):
+        if s == side or not 1 <= i < len(frames) - 1 or frames[i][1] != "play_on":
+            continue
+        later = events[k + 1] if k + 1 < len(events) else None
+        if later is not None and (later[1], later[2]) == (s, number) and later[0] - i <= TOUCHES_APART:
+            continue  # not his last touch
+        kicked = _ours(frames[i - 1][2], forward)
+        ball, after = _ours(frames[i][2], forward), _ours(frames[i + 1][2], forward)
+        if math.dist(kicked, (-GOAL_X, 0.0)) > SHOT_RANGE:
+            continue
+        path = reach.ball_path(ball, (after[0] - ball[0], after[1] - ball[1]))
+        crossing = next((n for n, (x, _) in enumerate(path) if x <= -GOAL_X), None)
+        if crossing is None or abs(path[crossing][1]) > FIELD.goal_width / 2:
+            continue
+        keeper = next(((p[2], p[3]) for p in frames[i][3] if p[0] == side and p[6] & GOALIE), None)
+        if keeper is None:
+            continue
+        keeper, spot, before = _ours(keeper, forward), guard_spot(kicked), path[:crossing]
+        until = min(
+            later[0] if later is not None else len(frames), i + 2 * crossing + 3
+        )  # (a later kick's goal is its own)
+        goal = any(f[1].startswith("goal_") for f in frames[i:until])
+        out.append(
+            Shot(
+                time=frames[i][0],
+                goal=goal,
+                reached=reach.cycles_to_path(keeper, before, reach.CATCH_REACH) is not None,
+                from_spot=reach.cycles_to_path(spot, before, reach.CATCH_REACH) is not None,
+                off_spot=math.dist(keeper, spot),
+            )
+        )
+    return out
+
+
+def _ours(point: tuple[float, float], forward: float) -> tuple[float, float]:
+    return (forward * point[0], forward * point[1])
+
+
+def row(name: str, found: list[Shot]) -> str:
+    """A table row: shots, goals, reachable as he stood and from his spot, his distance from it."""
+    if not found:
+        return f"| {name} | 0 | 0 | - | - | - |"
+    off = sorted(s.off_spot for s in found)
+    quartiles = statistics.quantiles(off, n=4) if len(off) > 1 else [off[0]] * 3
+    return (
+        f"| {name} | {len(found)} | {sum(s.goal for s in found)} | {sum(s.reached for s in found)} "
+        f"| {sum(s.from_spot for s in found)} | {quartiles[1]:.1f} ({quartiles[0]:.1f}-{quartiles[2]:.1f}) |"
+    )
+
+
+HEADER = (
+    "| match | shots on target | goals | his to reach as he stood | from his guard spot "
+    "| m off his spot: median (quartiles) |\n|---|---:|---:|---:|---:|---|"
+)
+
+
+def main() -> int:
+    args = match_parser(__doc__).parse_args()
+    print(HEADER)
+    everything = []
+    for match in args.matches:
+        found = shots(match, args.team)
+        everything += found
+        print(row(f"{match.parent.name}/{match.name}", found))
+    if len(args.matches) > 1:
+        print(row("all", everything))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
