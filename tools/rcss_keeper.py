@@ -91,7 +91,7 @@ def row(name: str, found: list[Shot]) -> str:
     if not found:
         return f"| {name} | 0 | 0 | - | - | - |"
     off = sorted(s.off_spot for s in found)
-    quartiles = statistics.quantiles(off, n=4) if len(off) > 1 else [off[0]] * 3
+    quartiles = statistics.quantiles(off, n=4, method="inclusive") if len(off) > 1 else [off[0]] * 3
     return (
         f"| {name} | {len(found)} | {sum(s.goal for s in found)} | {sum(s.reached for s in found)} "
         f"| {sum(s.from_spot for s in found)} | {quartiles[1]:.1f} ({quartiles[0]:.1f}-{quartiles[2]:.1f}) |"
