@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from cf_decision.goalkeeper import guard_spot
 from cf_decision.policy import decide
 from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
 from cf_decision.roles import Role, home_position, kick_off_position, role_of
@@ -214,6 +215,16 @@ def test_goalkeeper_guards_catches_clears():
     near = decide(state((-51.0, 0.0), ball=(-35.0, 10.0), **keeper), 1, 11, {})
     spot = (near.action.target.x, near.action.target.y)
     assert near.method == "moveTo" and -49.0 < spot[0] < -46.0 and 1.0 < spot[1] < 3.0  # towards the ball
+
+
+def test_the_goalkeeper_keeps_to_his_guard_spot_within_the_move_skills_tolerance():
+    keeper, ball = dict(number=1), (-35.0, 10.0)
+    x, y = guard_spot(ball)
+    d = decide(state((x, y - 0.9), ball=ball, **keeper), 1, 11, {})
+    assert d.method == "moveTo" and d.action.speed == 100.0  # 0.9 m off: back to it at full speed
+    assert math.dist((d.action.target.x, d.action.target.y), (x, y)) < 1e-6
+    d = decide(state((x, y - 0.5), ball=ball, **keeper), 1, 11, {})
+    assert d.method == "turnToDirection"  # within the skill's 0.7 m: a move would end at once
 
 
 def test_the_goalkeeper_closes_down_an_opponent_through_on_goal():
