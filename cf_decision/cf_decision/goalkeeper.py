@@ -48,7 +48,7 @@ def goalkeeper(
     else:
         spot = (OWN_GOAL[0] + 2.0, 0.0)
     if dist(me, spot) > KEEPER_SLACK:
-        # With a metre's slack, at walking pace, he stood a median 0.8 m off the spot at HELIOS base's
+        # With a metre's slack, at 80% of his pace, he stood a median 0.8 m off the spot at HELIOS base's
         # shots on target, and the spot reached 57 of 132 where he reached 44 (tools/rcss_keeper.py,
         # docs/performance.md, session 39).
         return Decision("moveTo", act.MoveTo(target=point(*spot), speed=100.0), "guard the goal")
