@@ -66,9 +66,8 @@ def shots(match: Path, team: str = "CF") -> list[Shot]:
         if keeper is None:
             continue
         keeper, spot, before = _ours(keeper, forward), guard_spot(kicked), path[:crossing]
-        until = min(
-            later[0] if later is not None else len(frames), i + 2 * crossing + 3
-        )  # (a later kick's goal is its own)
+        # A goal after anyone's next kick is that kick's.
+        until = min(later[0] if later is not None else len(frames), i + 2 * crossing + 3)
         goal = any(f[1].startswith("goal_") for f in frames[i:until])
         out.append(
             Shot(

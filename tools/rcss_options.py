@@ -73,8 +73,16 @@ def bin_of(gain: float | None) -> str:
 
 def options(match: Path, team: str = "CF", speed: float = 2.7, margin: int = 2) -> Counter:
     """(third, gain bin) -> kicks of ours in play, in one match (x in our attack's direction)."""
-    frames, side, forward = game(match, team, counters=True)  # the state bits tell the goalkeeper
     out: Counter = Counter()
+    for third, ball, mates, opponents in our_kicks(match, team):
+        out[(third, bin_of(best_gain(ball, mates, opponents, speed, margin)))] += 1
+    return out
+
+
+def our_kicks(match: Path, team: str = "CF"):
+    """Each kick of ours in play in one match: its third, the ball, the kicker's team-mates and the
+    opponents (as runners), all where they stood, x in our attack's direction."""
+    frames, side, forward = game(match, team, counters=True)  # the state bits tell the goalkeeper
     for i, s, number, _, _ in kick_events(frames):
         _, mode, (bx, by), players = frames[i]
         if s != side or mode != "play_on":
@@ -84,9 +92,7 @@ def options(match: Path, team: str = "CF", speed: float = 2.7, margin: int = 2) 
         opponents = [
             reach.Runner((forward * p[2], forward * p[3]), bool(p[6] & GOALIE)) for p in players if p[0] != side
         ]
-        third = THIRDS[third_of(ball[0])]
-        out[(third, bin_of(best_gain(ball, mates, opponents, speed, margin)))] += 1
-    return out
+        yield THIRDS[third_of(ball[0])], ball, mates, opponents
 
 
 def open_points(
@@ -113,16 +119,10 @@ def open_points(
 def open_map(match: Path, third: str, team: str = "CF", margin: int = 1) -> tuple[Counter, Counter]:
     """For our kicks in play from ``third`` in one match: at how many each grid point was in range,
     and at how many open."""
-    frames, side, forward = game(match, team, counters=True)
     in_range, seen = Counter(), Counter()
-    for i, s, _, _, _ in kick_events(frames):
-        _, mode, (bx, by), players = frames[i]
-        ball = (forward * bx, forward * by)
-        if s != side or mode != "play_on" or THIRDS[third_of(ball[0])] != third:
+    for where, ball, _, opponents in our_kicks(match, team):
+        if where != third:
             continue
-        opponents = [
-            reach.Runner((forward * p[2], forward * p[3]), bool(p[6] & GOALIE)) for p in players if p[0] != side
-        ]
         reachable, open_ = open_points(ball, opponents, margin)
         in_range.update(reachable)
         seen.update(open_)
