@@ -15,7 +15,7 @@ from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import table as belief_table
 from rcss_goals import goal_rows, goals, summary
 from rcss_keeper import HEADER, row, shots
-from rcss_options import best_gain, bin_of, map_table, open_map, open_points, options
+from rcss_options import best_gain, bin_of, in_behind, line_lanes, line_table, map_table, open_map, open_points, options
 from rcss_options import table as options_table
 from rcss_picture import picture
 from rcss_picture import table as picture_table
@@ -318,6 +318,26 @@ def test_the_map_says_where_a_team_mate_standing_would_have_been_found(tmp_path)
     # Nobody else on the field: every point in range is open.
     reachable, open_ = open_points((0.0, 0.0), [], 1)
     assert reachable == open_ and (20, 0) in open_
+
+
+def test_the_line_view_says_where_a_ball_in_behind_their_line_was_there(tmp_path):
+    """CF 9 kicks from the middle; PYRUS's line is its man 2 at (20, -20) (its keeper is the last man);
+    CF 10 stands on the line at y = 20. The lane behind the defender is closed, its mirror open."""
+    where = {("l", 9): (0.0, 0.0), ("l", 10): (18.5, 20.0), ("r", 2): (20.0, -20.0), ("r", 1): (50.0, 0.0)}
+    write_one_kick(tmp_path, where)
+    lanes = line_lanes(tmp_path, "middle third", "CF", margin=1)
+    assert lanes[("kicks", 20)] == 1 and lanes[("open", 20)] == 1 and lanes[("ours", 20)] == 1
+    assert lanes[("open", 25)] == 1 and lanes[("ours", 25)] == 0  # open, but nobody of ours there
+    assert lanes[("open", -25)] == 0  # the defender at (20, -20) has that ball first
+    assert "| 20 | 1 | 100 | 100 |" in line_table(lanes)
+    assert line_lanes(tmp_path, "our third", "CF") == {}
+    # Straight ahead of the ball a pass meets him before the line: to his feet, not in behind.
+    assert not in_behind((0.5, 0.0), [], 20.0, 0.0, 1) and in_behind((0.5, 0.0), [], 20.0, 25.0, 1)
+    # One opponent only: no line to stand on.
+    alone = tmp_path / "alone"
+    alone.mkdir()
+    write_one_kick(alone, {("l", 9): (0.0, 0.0), ("r", 1): (50.0, 0.0)})
+    assert line_lanes(alone, "middle third", "CF") == {}
 
 
 def goals_match(tmp: Path) -> Path:

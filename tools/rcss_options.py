@@ -2,6 +2,7 @@
 
     python tools/rcss_options.py MATCH_DIR [MATCH_DIR ...] [--team CF] [--speed 2.7] [--margin 2]
     python tools/rcss_options.py MATCH_DIR [MATCH_DIR ...] --map "middle third" [--margin 1]
+    python tools/rcss_options.py MATCH_DIR [MATCH_DIR ...] --line "middle third" [--margin 1]
 
 A MATCH_DIR is what ``tools/rcss_match.py --game-log --out DIR`` writes (``rcss_series``: its
 ``match-N``); only its game log (``*.rcg``) is read. For each kick of ours in play, the decision's
@@ -20,6 +21,14 @@ still on it (kicked as the decision kicks a pass) reaches him ``--margin`` cycle
 any opponent could have it. Offside is not judged: a point beyond their second-last man is
 open only to a runner who set off from onside. A map of low shares says no place to stand would
 have helped much: the opponents covered the space.
+
+``--line THIRD`` asks where along their last line a team-mate would have been found with a ball in
+behind it: for our kicks in play from that third, in lanes 5 m apart across the field, a team-mate
+standing LINE_SHORT onside of their offside line (their second-last man, or the ball if further up)
+and a pass aimed LINE_LEADS ahead of him and LINE_SIDES to his side; the lane is open when such a
+ball is first within his reach beyond the line, ``--margin`` cycles or more before any opponent
+could have it. Beside it: how often one of ours stood on the line in that lane (within ON_LINE
+onside of it and of the lane). Open lanes where ours seldom stood say where a forward should wait.
 """
 
 from __future__ import annotations
@@ -34,12 +43,17 @@ from rcss_ball_use import game, match_parser
 from rcss_series import kick_events, third_of
 
 from cf_decision import reach
+from cf_lang.ontology import FIELD
 from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
 
 THIRDS = ("our third", "middle third", "their third")
 GRID_X = tuple(range(-50, 51, 5))  # the map's points (m, our attack's direction)
 GRID_Y = tuple(range(-30, 31, 5))
 GAINS = ("none", "< 0 m", "0-10 m", "10-20 m", "20 m or more")
+LINE_SHORT = 0.5  # m onside of their line: where the team-mate of --line stands
+LINE_LEADS = (5.0, 10.0, 15.0, 20.0)  # m ahead of him: where a ball in behind is aimed,
+LINE_SIDES = (-6.0, -3.0, 0.0, 3.0, 6.0)  # m to his side: and this far across
+ON_LINE = 2.5  # m: one of ours this near the lane and onside of their line by no more than this stood on it
 
 
 def best_gain(
@@ -129,6 +143,65 @@ def open_map(match: Path, third: str, team: str = "CF", margin: int = 1) -> tupl
     return in_range, seen
 
 
+def offside_x(ball: tuple[float, float], opponents: list[reach.Runner]) -> float | None:
+    """Their offside line: their second-last man's x, or the ball's (or the halfway line) if further up."""
+    xs = sorted((o.pos[0] for o in opponents), reverse=True)
+    return max(xs[1], ball[0], 0.0) if len(xs) >= 2 else None
+
+
+def in_behind(ball: tuple[float, float], opponents: list[reach.Runner], line: float, y: float, margin: int) -> bool:
+    """Whether a team-mate standing LINE_SHORT onside of ``line`` at ``y`` gets a ball in behind it:
+    aimed LINE_LEADS ahead of him and LINE_SIDES across (kicked as the decision kicks a pass), first
+    within his reach beyond the line, ``margin`` cycles or more before any opponent."""
+    me = (line - LINE_SHORT, y)
+    half_width = FIELD.width / 2 - 2.0
+    for lead in LINE_LEADS:
+        for side in LINE_SIDES:
+            target = (min(FIELD.length / 2 - 3.0, me[0] + lead), max(-half_width, min(half_width, y + side)))
+            d = math.dist(ball, target)
+            if not 4.0 <= d <= 40.0:
+                continue
+            path = reach.in_field(reach.kicked_path(ball, target, reach.pass_speed(d)))
+            mine = reach.first_cycles(path, [reach.Runner(me)])
+            if mine is None or path[mine - 1][0] <= line:
+                continue
+            theirs = reach.first_cycles(path, opponents)
+            if theirs is None or theirs - mine >= margin:
+                return True
+    return False
+
+
+def line_lanes(match: Path, third: str, team: str = "CF", margin: int = 1) -> Counter:
+    """For our kicks in play from ``third`` in one match, per lane y: ("kicks", y) how many had their line
+    within 40 m of the lane's spot, ("open", y) at how many a ball in behind was there, ("ours", y) at
+    how many one of ours stood on the line there."""
+    out: Counter = Counter()
+    for where, ball, mates, opponents in our_kicks(match, team):
+        line = offside_x(ball, opponents)
+        if where != third or line is None:
+            continue
+        for y in GRID_Y:
+            if math.dist(ball, (line, y)) > 40.0:
+                continue
+            out[("kicks", y)] += 1
+            out[("open", y)] += in_behind(ball, opponents, line, y, margin)
+            out[("ours", y)] += any(line - ON_LINE <= x <= line and abs(my - y) <= ON_LINE for x, my in mates)
+    return out
+
+
+def line_table(lanes: Counter) -> str:
+    """One row per lane, from y = +30 down: kicks, open share (%), ours-on-the-line share (%)."""
+    rows = [
+        "| lane y (m) | kicks | a ball in behind their line was there (%) | one of ours stood on the line there (%) |",
+        "|---:|---:|---:|---:|",
+    ]
+    for y in reversed(GRID_Y):
+        n = lanes[("kicks", y)]
+        if n:
+            rows.append(f"| {y} | {n} | {100 * lanes[('open', y)] // n} | {100 * lanes[('ours', y)] // n} |")
+    return "\n".join(rows)
+
+
 def map_table(in_range: Counter, seen: Counter) -> str:
     """Each grid point's open share (%) of the kicks it was in range of, rows from y = +30 down."""
     rows = ["| y \\ x | " + " | ".join(str(x) for x in GRID_X) + " |", "|---:|" + "---:|" * len(GRID_X)]
@@ -147,19 +220,32 @@ def table(counts: Counter) -> str:
     return "\n".join(rows)
 
 
+def the(third: str) -> str:
+    """ "our third", "the middle third", "their third"."""
+    return third if third != "middle third" else "the middle third"
+
+
 def main() -> int:
     ap = match_parser(__doc__)
     ap.add_argument("--speed", type=float, default=2.7, help="m/cycle the ball leaves the foot with")
     ap.add_argument("--margin", type=int, default=2, help="cycles a team-mate must be first by")
     ap.add_argument("--map", choices=THIRDS, help="instead: where a team-mate standing would have been found")
+    ap.add_argument("--line", choices=THIRDS, help="instead: where along their last line a ball in behind was there")
     args = ap.parse_args()
+    if args.line:
+        lanes: Counter = Counter()
+        for match in args.matches:
+            lanes += line_lanes(match, args.line, args.team, args.margin)
+        print(f"Our kicks from {the(args.line)}: a team-mate on their last line, lane by lane")
+        print(line_table(lanes))
+        return 0
     if args.map:
         in_range, seen = Counter(), Counter()
         for match in args.matches:
             reachable, open_ = open_map(match, args.map, args.team, args.margin)
             in_range, seen = in_range + reachable, seen + open_
         print(
-            f"Our kicks from the {args.map}: the share (%) of those in range at which a team-mate on the point was open"
+            f"Our kicks from {the(args.map)}: the share (%) of those in range at which a team-mate on the point was open"
         )
         print(map_table(in_range, seen))
         return 0
