@@ -177,8 +177,8 @@ def line_lanes(match: Path, third: str, team: str = "CF", margin: int = 1) -> Co
     how many one of ours stood on the line there."""
     out: Counter = Counter()
     for where, ball, mates, opponents in our_kicks(match, team):
-        line = offside_x(ball, opponents)
-        if where != third or line is None:
+        line = offside_x(ball, opponents) if where == third else None
+        if line is None:
             continue
         for y in GRID_Y:
             if math.dist(ball, (line, y)) > 40.0:
