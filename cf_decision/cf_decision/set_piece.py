@@ -15,7 +15,7 @@ OUR_SET_PIECES = frozenset(
         PlayMode.FREE_KICK_OUR,
     }
 )
-KICKING = frozenset({"shoot", "pass", "dribble", "kick"})
+KICKING = frozenset({"shoot", "pass", "dribble", "holdBall", "kick"})  # (a hold-ball touch is a kick)
 TOUCHED = 1.5  # m: another player this close to the ball has (or may have) touched it
 FRESH_AGE = 1  # cycles: a player seen this long ago is where he was seen (rcssserver: a see every 2 cycles)
 TAKER_MEMORY = 100  # cycles after which a set piece's taker plays on as usual

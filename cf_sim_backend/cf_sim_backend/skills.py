@@ -413,6 +413,64 @@ class Dribble(Skill):
         return margin is not None and margin > 0
 
 
+class HoldBall(Skill):
+    """Keep the ball within reach, where it is furthest from the opponents near, without moving on.
+
+    Each cycle one touch lays the ball on a ring HOLD_RADIUS round where I will be, at the point
+    furthest from the nearest opponent (where he will be); none when it rolls there by itself.
+    It runs until a newer request replaces it (or the skills' timeout), and fails once the ball is
+    out of reach. A base team's hold-ball does the same; note that rcssserver's tackle reaches
+    2 m ahead of the tackler, so against a man pressing close it buys time, not safety.
+    """
+
+    name = "holdBall"
+
+    def _step(self, world: World, me: SimPlayer) -> Step:
+        b = world.ball
+        if distance(me.x, me.y, b.x, b.y) > world.params.kickable_distance:
+            return Step([], "failed", "the ball is out of reach")
+        spot = hold_spot(world, me)
+        ax, ay = spot[0] - b.x - b.vx, spot[1] - b.y - b.vy
+        if math.hypot(ax, ay) <= HOLD_LAID:
+            return Step([])
+        rate = kick_rate(world, me)
+        most = most_accel(world, rate)
+        if math.hypot(ax, ay) > most:  # as near the spot as one touch gets it
+            ax, ay = ax * most / math.hypot(ax, ay), ay * most / math.hypot(ax, ay)
+        return Step([_kick_for(me, ax, ay, rate)])
+
+
+HOLD_RADIUS = 0.7  # m from my centre: inside the kickable distance (1.085) with room for the kick's noise
+HOLD_LAID = 0.15  # m: a ball rolling this near the spot by itself is not touched
+HOLD_NEAR = 5.0  # m: the opponents this close to me are the ones the ball is kept from
+HOLD_EDGE = 0.5  # m inside the field: a spot beyond is not used
+
+
+def hold_spot(world: World, me: SimPlayer) -> tuple[float, float]:
+    """Where a hold-ball touch lays the ball: on the ring HOLD_RADIUS round where I will be next cycle,
+    every 30 degrees, the point furthest from the nearest opponent within HOLD_NEAR (where he will be);
+    with nobody near, in front of my body. Of two as far, the one nearer the front of my body (a
+    touch from there is the strongest)."""
+    prm = world.params
+    cx, cy = me.x + me.vx, me.y + me.vy
+    near = [
+        (p.x + p.vx, p.y + p.vy)
+        for p in world.players.values()
+        if p.side is not me.side and distance(p.x, p.y, me.x, me.y) <= HOLD_NEAR
+    ]
+    best, best_key = None, None
+    for degrees in range(0, 360, 30):
+        heading = math.radians(me.body + degrees)
+        x, y = cx + HOLD_RADIUS * math.cos(heading), cy + HOLD_RADIUS * math.sin(heading)
+        if abs(x) > prm.field_length / 2 - HOLD_EDGE or abs(y) > prm.field_width / 2 - HOLD_EDGE:
+            continue
+        room = min((distance(x, y, ox, oy) for ox, oy in near), default=0.0)
+        key = (round(room, 1), -abs(norm_deg(degrees)))
+        if best_key is None or key > best_key:
+            best, best_key = (x, y), key
+    return best if best is not None else (cx, cy)
+
+
 OUTRUN = 0.2  # m/cycle: a ball faster than the push by more than this is not let run as the dribble's own
 REGAIN = 5  # cycles: a full-speed dribble's touch sends the ball no further than the dribbler then is
 DRIBBLE_FACING = 30.0  # degrees: a dribbler whose body is further off the way turns before he pushes,
@@ -550,6 +608,10 @@ def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> S
         return TurnTo(target=_object_position(action.obj, side, world))
     if isinstance(action, act.Intercept):
         return Intercept(*opp_goal)
+    if isinstance(action, act.HoldBall):
+        if distance(me.x, me.y, world.ball.x, world.ball.y) > prm.kickable_distance:
+            raise SkillError("the ball is not kickable")
+        return HoldBall()
     if isinstance(action, act.Dribble):
         return Dribble(*_absolute(side, action.target.x, action.target.y), action.speed)
     if isinstance(action, act.Shoot):

@@ -352,3 +352,44 @@ def test_a_new_dribble_takes_a_fast_ball_coming_by_under_control_instead_of_chas
             sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
         sim.step()
         assert distance(me.x, me.y, ball.x, ball.y) < 3.0  # still his ball
+
+
+def test_hold_ball_keeps_the_ball_in_reach_on_the_side_away_from_the_man_near():
+    # An opponent stands 1.6 m to my left with the ball between us (within his reach): the touches
+    # take it round to my right and keep it there; when he moves round to my right, over to my left.
+    sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 0.0), (Side.RIGHT, 4, 0.0, 1.6, -90.0))
+    ball, him = sim.world.ball, sim.world.player(Side.RIGHT, 4)
+    ball.x, ball.y = 0.0, 0.6
+    skill, me = skill_of(sim, Side.LEFT, 10, exec_("holdBall", number=10))
+    kickable = sim.world.params.kickable_distance
+
+    def hold(cycles):
+        away = []
+        for _ in range(cycles):
+            step = skill.step(sim.world, me)
+            assert step.status == "running"
+            for cmd in step.commands:
+                sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
+            sim.step()
+            assert distance(me.x, me.y, ball.x, ball.y) <= kickable  # never out of my reach
+            away.append(distance(him.x, him.y, ball.x, ball.y))
+        return away
+
+    away = hold(15)
+    assert away[-1] > 2.0 and ball.y < me.y  # on my far side from him, out of his kickable reach
+    assert distance(me.x, me.y, 0.0, 0.0) < 1.0  # and I stayed where I was
+    him.x, him.y = me.x, me.y - 1.6
+    away = hold(15)
+    assert away[-1] > 2.0 and ball.y > me.y
+
+
+def test_hold_ball_needs_the_ball_in_reach_and_fails_once_it_is_gone():
+    sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 0.0))
+    sim.world.ball.x = 5.0
+    with pytest.raises(SkillError):
+        skill_of(sim, Side.LEFT, 10, exec_("holdBall", number=10))
+    sim.world.ball.x = 0.6
+    skill, me = skill_of(sim, Side.LEFT, 10, exec_("holdBall", number=10))
+    assert skill.step(sim.world, me).status == "running"
+    sim.world.ball.x, sim.world.ball.vx = 3.0, 1.0  # knocked away
+    assert skill.step(sim.world, me).status == "failed"

@@ -72,6 +72,10 @@ class Dribble(Concept):
     )
 
 
+class HoldBall(Concept):
+    """Keep the ball within reach, away from the opponents near, without going anywhere (until replaced)."""
+
+
 class Intercept(Concept):
     """Run to where the ball can be reached first."""
 
@@ -145,6 +149,7 @@ PLAYER_METHODS: dict[str, tuple[type[Concept], str]] = {
     "shoot": (Shoot, "Shoot"),
     "pass": (Pass, "Pass"),
     "dribble": (Dribble, "Dribble"),
+    "holdBall": (HoldBall, "Dribble"),
     "intercept": (Intercept, "Intercept"),
     "tackle": (Tackle, "Tackle"),
     "catch": (Catch, "Catch"),

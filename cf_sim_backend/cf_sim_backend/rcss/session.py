@@ -21,7 +21,7 @@ from cf_sim_backend.skills import Command, Skill
 from cf_sim_backend.world import Side, norm_deg
 
 _EXECUTED = ("kick", "dash", "turn", "move", "catch", "tackle")  # sense_body counters of body commands
-_BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "kick", "catch", "tackle"})
+_BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "holdBall", "kick", "catch", "tackle"})
 SCAN_OFFSET = 40.0  # degrees the head looks off the ball: the view cone (120 at normal width) keeps it in sight
 SCAN_MARGIN = 15.0  # degrees the ball stays inside the cone's edge, whatever the width
 NARROW_WITHIN = 10.0  # m: a ball this close is watched every cycle (narrow view), not every other one
