@@ -122,12 +122,26 @@ def open_points(
             if x < ball[0] + 5.0 or not 4.0 <= d <= 40.0:
                 continue
             in_range.add((x, y))
-            path = reach.in_field(reach.kicked_path(ball, (x, y), reach.pass_speed(d)))
-            mine = reach.first_cycles(path, [reach.Runner((x, y))])
-            theirs = reach.first_cycles(path, opponents)
-            if mine is not None and (theirs is None or theirs - mine >= margin):
+            if received(ball, (x, y), (x, y), opponents, margin) is not None:
                 out.add((x, y))
     return in_range, out
+
+
+def received(
+    ball: tuple[float, float],
+    target: tuple[float, float],
+    at: tuple[float, float],
+    opponents: list[reach.Runner],
+    margin: int,
+) -> tuple[float, float] | None:
+    """Where a team-mate standing at ``at`` first has a pass from ``ball`` aimed at ``target`` (kicked as
+    the decision kicks a pass), if he has it ``margin`` cycles or more before any opponent could."""
+    path = reach.in_field(reach.kicked_path(ball, target, reach.pass_speed(math.dist(ball, target))))
+    mine = reach.first_cycles(path, [reach.Runner(at)])
+    if mine is None:
+        return None
+    theirs = reach.first_cycles(path, opponents)
+    return path[mine - 1] if theirs is None or theirs - mine >= margin else None
 
 
 def open_map(match: Path, third: str, team: str = "CF", margin: int = 1) -> tuple[Counter, Counter]:
@@ -158,15 +172,10 @@ def in_behind(ball: tuple[float, float], opponents: list[reach.Runner], line: fl
     for lead in LINE_LEADS:
         for side in LINE_SIDES:
             target = (min(FIELD.length / 2 - 3.0, me[0] + lead), max(-half_width, min(half_width, y + side)))
-            d = math.dist(ball, target)
-            if not 4.0 <= d <= 40.0:
+            if not 4.0 <= math.dist(ball, target) <= 40.0:
                 continue
-            path = reach.in_field(reach.kicked_path(ball, target, reach.pass_speed(d)))
-            mine = reach.first_cycles(path, [reach.Runner(me)])
-            if mine is None or path[mine - 1][0] <= line:
-                continue
-            theirs = reach.first_cycles(path, opponents)
-            if theirs is None or theirs - mine >= margin:
+            at = received(ball, target, me, opponents, margin)
+            if at is not None and at[0] > line:
                 return True
     return False
 
