@@ -431,12 +431,13 @@ class HoldBall(Skill):
             return Step([], "failed", "the ball is out of reach")
         spot = hold_spot(world, me)
         ax, ay = spot[0] - b.x - b.vx, spot[1] - b.y - b.vy
-        if math.hypot(ax, ay) <= HOLD_LAID:
+        need = math.hypot(ax, ay)
+        if need <= HOLD_LAID:
             return Step([])
         rate = kick_rate(world, me)
         most = most_accel(world, rate)
-        if math.hypot(ax, ay) > most:  # as near the spot as one touch gets it
-            ax, ay = ax * most / math.hypot(ax, ay), ay * most / math.hypot(ax, ay)
+        if need > most:  # as near the spot as one touch gets it
+            ax, ay = ax * most / need, ay * most / need
         return Step([_kick_for(me, ax, ay, rate)])
 
 
@@ -577,9 +578,11 @@ def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> S
     """The skill that carries out ``action`` (an ontology model); raises SkillError if it cannot start."""
     prm = world.params
     opp_goal = (side.sign * prm.field_length / 2, 0.0)
+    if isinstance(action, (act.Kick, act.HoldBall)) and (
+        distance(me.x, me.y, world.ball.x, world.ball.y) > prm.kickable_distance
+    ):
+        raise SkillError("the ball is not kickable")
     if isinstance(action, act.Kick):
-        if distance(me.x, me.y, world.ball.x, world.ball.y) > prm.kickable_distance:
-            raise SkillError("the ball is not kickable")
         return Once(("kick", action.power, math.degrees(action.direction)), "kick")
     if isinstance(action, act.Dash):
         return Once(("dash", action.power, math.degrees(action.direction)), "dash")
@@ -609,8 +612,6 @@ def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> S
     if isinstance(action, act.Intercept):
         return Intercept(*opp_goal)
     if isinstance(action, act.HoldBall):
-        if distance(me.x, me.y, world.ball.x, world.ball.y) > prm.kickable_distance:
-            raise SkillError("the ball is not kickable")
         return HoldBall()
     if isinstance(action, act.Dribble):
         return Dribble(*_absolute(side, action.target.x, action.target.y), action.speed)
