@@ -76,8 +76,36 @@ def test_every_kick_of_ours_is_put_down_to_its_reason_and_judged_by_the_next_kic
     carried = use[("space ahead: carry it", "their half")]
     assert (carried.kept, carried.lost) == (0, 1)  # the first push is his own next touch: not counted
     assert set(use) == {("forward pass to team-mate", "their half"), ("space ahead: carry it", "their half")}
+    assert passed.contested_kept + passed.contested_lost == 0  # PYRUS 3 stood 8 m from the ball
     text = table(use, 3)
-    assert "| forward pass to team-mate | their half | 1 | 1 | 0 | 100% | +3.0 |" in text
+    assert "| forward pass to team-mate | their half | 1 | 1 | 0 | 100% | 0 of 0 | +3.0 |" in text
+
+
+def test_a_kick_with_an_opponent_at_the_ball_is_counted_apart(tmp_path):
+    """PYRUS 3 stands 1 m from the ball when CF 9 passes (rcssserver adds his touch to ours), and
+    cuts it out; the same pass with him 2 m off is not contested."""
+    for stands, contested in ((3.0, True), (4.0, False)):
+        match = tmp_path / str(stands)
+        match.mkdir()
+        kicks = {("l", 9): 0, ("l", 10): 0, ("r", 3): 0}
+        where = {("l", 9): 1.5, ("l", 10): 30.0, ("r", 3): stands}
+        lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+        for t in range(1, 12):
+            ball = 2.0 if t <= 2 else 2.0 + 2.0 * (t - 2)
+            if t == 3:
+                kicks[("l", 9)] += 1
+            if t == 8:
+                kicks[("r", 3)] += 1
+            lines.append(show(t, ball, kicks, where))
+        (match / "m.rcg").write_text("\n".join(lines) + "\n")
+        (match / "logs-CF").mkdir()
+        (match / "logs-CF" / "CF_9_rcss_player.log").write_text(
+            "[INFO] [1.0] [CF_9_decision]: t=1 pass: keep it: safe pass to team-mate 10\n"
+        )
+        o = ball_use(match, "CF", after=3)[("keep it: safe pass to team-mate", "their half")]
+        assert (o.kept, o.lost) == (0, 1)
+        assert (o.contested_kept, o.contested_lost) == ((0, 1) if contested else (0, 0))
+        assert ("| 0 of 1 |" in table({("keep it: safe pass to team-mate", "their half"): o}, 3)) is contested
 
 
 def test_reasons_lose_their_numbers():

@@ -8,9 +8,11 @@ component logs every new way of playing the ball (``[CF_9_decision]: t=314 pass:
 to team-mate 10``). Each kick of ours in play is put down to the reason its player's decision
 last logged (within ``--after`` cycles before it; "?" if none), in our half or theirs, and judged
 by the next kick: a team-mate's (kept) or an opponent's (lost); the kicker's own next touch
-(a dribble's next push, a collecting touch) is not counted. The last column is how far up the
-field the ball was ``--after`` cycles later, on average (negative: back towards our goal).
-This is how docs/performance.md counts what loses the ball.
+(a dribble's next push, a collecting touch) is not counted. A column says how many of those kicks
+had an opponent at the ball (within CONTESTED of it the cycle before: his kick or tackle meets
+ours) and how many of them were kept. The last column is how far up the field the ball was
+``--after`` cycles later, on average (negative: back towards our goal). This is how
+docs/performance.md counts what loses the ball.
 
 A second table says where on the field each team had the ball (the share of play-on cycles
 after its last kick, by the ball's third of the field, thirds counted from our goal) and where
@@ -22,6 +24,7 @@ from __future__ import annotations
 import argparse
 import functools
 import itertools
+import math
 import re
 import sys
 from collections import defaultdict
@@ -31,6 +34,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_series import Territory, kick_events, read_rcg, side_of, territory_of
 
+CONTESTED = 1.2  # m: an opponent this near the ball kicks or tackles it as we kick it (rcssserver adds both)
 _DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
 _NUMBERS = re.compile(r"(?<![\w-])-?\d+(\.\d+)?")
 
@@ -40,6 +44,17 @@ class Outcome:
     kept: int = 0
     lost: int = 0
     advance: list[float] = field(default_factory=list)
+    contested_kept: int = 0  # of the kept and lost: those kicked with an opponent at the ball
+    contested_lost: int = 0
+
+    def add(self, other: Outcome) -> None:
+        self.kept, self.lost, self.advance = (
+            self.kept + other.kept,
+            self.lost + other.lost,
+            self.advance + other.advance,
+        )
+        self.contested_kept += other.contested_kept
+        self.contested_lost += other.contested_lost
 
 
 def reason(text: str) -> str:
@@ -92,12 +107,18 @@ def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, 
         before = [why for when, why in said.get(number, []) if t - after <= when <= t]
         half = "our half" if forward * x < 0 else "their half"
         o = out[(before[-1] if before else "?", half)]
-        if s2 == side:
-            o.kept += 1
-        else:
-            o.lost += 1
+        kept = s2 == side
+        o.kept, o.lost = o.kept + kept, o.lost + (not kept)
+        if contested(frames[max(0, i - 1)], side):
+            o.contested_kept, o.contested_lost = o.contested_kept + kept, o.contested_lost + (not kept)
         o.advance.append(forward * (frames[min(len(frames) - 1, i + after)][2][0] - ball[0]))
     return out
+
+
+def contested(frame: tuple, our_side: str) -> bool:
+    """An opponent within CONTESTED of the ball in this frame."""
+    (bx, by), players = frame[2], frame[3]
+    return any(p[0] != our_side and math.hypot(p[2] - bx, p[3] - by) <= CONTESTED for p in players)
 
 
 def territory(match: Path, team: str = "CF") -> dict[str, Territory]:
@@ -123,14 +144,15 @@ def territory_table(where: dict[str, Territory], opponent: str = "them") -> str:
 
 def table(outcomes: dict[tuple[str, str], Outcome], after: int) -> str:
     rows = [
-        "| with the ball | where | kicks | to a team-mate | lost | kept share | ball advance after "
-        f"{after} cycles (m) |",
-        "|---|---|---:|---:|---:|---:|---:|",
+        "| with the ball | where | kicks | to a team-mate | lost | kept share | an opponent at the ball: kept "
+        f"| ball advance after {after} cycles (m) |",
+        "|---|---|---:|---:|---:|---:|---:|---:|",
     ]
     for (why, half), o in sorted(outcomes.items(), key=lambda kv: -(kv[1].kept + kv[1].lost)):
         n = o.kept + o.lost
         advance = sum(o.advance) / len(o.advance)
-        rows.append(f"| {why} | {half} | {n} | {o.kept} | {o.lost} | {o.kept / n:.0%} | {advance:+.1f} |")
+        at_ball = f"{o.contested_kept} of {o.contested_kept + o.contested_lost}"
+        rows.append(f"| {why} | {half} | {n} | {o.kept} | {o.lost} | {o.kept / n:.0%} | {at_ball} | {advance:+.1f} |")
     return "\n".join(rows)
 
 
@@ -150,8 +172,7 @@ def main() -> int:
     where = {"us": Territory(), "them": Territory()}
     for match in args.matches:
         for key, o in ball_use(match, args.team, args.after).items():
-            t = total[key]
-            t.kept, t.lost, t.advance = t.kept + o.kept, t.lost + o.lost, t.advance + o.advance
+            total[key].add(o)
         for key, t in territory(match, args.team).items():
             where[key].held = [a + b for a, b in zip(where[key].held, t.held, strict=True)]
             where[key].won = [a + b for a, b in zip(where[key].won, t.won, strict=True)]
