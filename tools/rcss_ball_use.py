@@ -48,11 +48,10 @@ class Outcome:
     contested_lost: int = 0
 
     def add(self, other: Outcome) -> None:
-        self.kept, self.lost, self.advance = (
-            self.kept + other.kept,
-            self.lost + other.lost,
-            self.advance + other.advance,
-        )
+        """Count ``other``'s kicks in too (another match's, for the same reason)."""
+        self.kept += other.kept
+        self.lost += other.lost
+        self.advance += other.advance
         self.contested_kept += other.contested_kept
         self.contested_lost += other.contested_lost
 
