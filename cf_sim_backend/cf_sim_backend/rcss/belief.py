@@ -53,7 +53,6 @@ QUANT = 0.05  # relative distance error of moving objects (the server rounds log
 # moved otherwise than believed: somebody else played it.
 BALL_SURPRISE = 0.3  # m
 BALL_TRACK_GAP = 3  # cycles: two sightings this close in time give the ball's velocity between them
-BALL_TRACK_NEAR = 5.0  # m: ... when the ball is this near us (further off, its distance's rounding swamps it)
 
 # rcssserver play modes the embedded simulator's names do not have, as the nearest of those.
 _FOUL = (
@@ -399,21 +398,14 @@ class Belief:
     def _ball_motion(self, rx: float, ry: float, d: float, now: int) -> tuple[float, float]:
         """The ball's velocity (server frame, m/cycle) when a see shows it ``(rx, ry)`` from us without one.
 
-        Where it was believed to roll to, the believed velocity stands. A ball sighted elsewhere near
-        us was played by somebody else (a team-mate's pass, an opponent's touch): its velocity is then
-        the way it went since the sighting before, if that was lately and in play. Keeping the old
-        velocity there sent our passes off by up to 110 degrees (the kick takes out the velocity it
-        believes). Further off, where each sighting is 5% of its distance out (a metre either way at
-        20 m), the estimate is rough: taken at every distance, our kicks in play were kept less often
-        against HELIOS base (43% of 247, 54% of 230 before, docs/performance.md, session 41), likely as
-        a receiver who sees no velocity goes by the pass his team-mate announced and one who sees a
-        rough one goes by that.
+        Where it was believed to roll to, the believed velocity stands. A ball sighted elsewhere was
+        played by somebody else (a team-mate's pass, an opponent's touch): its velocity is then the way
+        it went since the sighting before, if that was lately and in play. Keeping the old velocity
+        there sent our passes off by up to 110 degrees (the kick takes out the velocity it believes).
         """
         ball, me = self.ball, self.me
         if ball is None:
             return 0.0, 0.0
-        if d > BALL_TRACK_NEAR:
-            return ball.vx, ball.vy
         if math.hypot(me.x + rx - ball.x, me.y + ry - ball.y) <= BALL_SURPRISE + QUANT * d:
             return ball.vx, ball.vy
         last = self.ball_sighting
