@@ -319,36 +319,6 @@ def test_a_ball_that_rolls_into_our_body_bounces_off_it_and_the_pass_still_goes_
     assert abs(_pass_direction(b, (0.0, 0.056), (0.0, 0.0)) - 0.0) < 5.0  # ahead, to (0, 0)
 
 
-def test_a_ball_sighted_where_it_was_not_believed_to_roll_moves_as_it_went_since_the_last_sighting():
-    """A see shows a ball outside the view cone without its velocity. Somebody else played it (here
-    an opponent's touch sends a still ball at us): the velocity comes from the two sightings. The old
-    velocity kept sent our passes off by up to 110 degrees against HELIOS base."""
-    b = _belief()
-    b.update(parse("(hear 9 referee play_on)"))
-    b.update(parse("(sense_body 10 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
-    b.update(parse(f"(see 10 {SEE_CENTRE} ((b) 2.5 0 0 0))"))  # 2.5 m ahead, still
-    b.update(parse("(sense_body 11 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
-    b.update(parse(f"(see 11 {SEE_CENTRE} ((B) 0.8 -50))"))  # felt beside us, 2 m from where it lay
-    went = (-10.0 + 0.8 * math.cos(math.radians(50)) + 7.5, -0.8 * math.sin(math.radians(50)))
-    true_velocity = (went[0] * 0.94, went[1] * 0.94)
-    assert (b.ball.vx, b.ball.vy) == pytest.approx(true_velocity, abs=0.05)
-    to = (-25.0, -5.0)  # a team-mate behind us, on the ball's side
-    aim = math.degrees(math.atan2(to[1] - b.ball.y, to[0] - b.ball.x))
-    assert abs(_pass_direction(b, true_velocity, to) - aim) < 5.0
-
-    # Sighted where it was believed to roll, the believed velocity stands (no noise added) ...
-    b.update(parse("(sense_body 12 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
-    x, y, vx, vy = b.ball.x, b.ball.y, b.ball.vx, b.ball.vy
-    d, a = math.hypot(x + 10.0, y) + 0.1, math.degrees(math.atan2(y, x + 10.0))
-    b.update(parse(f"(see 12 {SEE_CENTRE} ((B) {d:.2f} {a:.1f}))"))
-    assert (b.ball.vx, b.ball.vy) == (vx, vy)
-    # ... and a ball the referee placed did not roll there.
-    b.update(parse("(hear 12 referee kick_in_l)"))
-    b.update(parse("(sense_body 13 (view_mode high narrow) (speed 0 0) (head_angle 0))"))
-    b.update(parse(f"(see 13 {SEE_CENTRE} ((B) 2.0 90))"))
-    assert (b.ball.vx, b.ball.vy) == (0.0, 0.0)
-
-
 # ---- the session: commands ------------------------------------------------------------
 
 

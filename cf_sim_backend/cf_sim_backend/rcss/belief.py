@@ -49,10 +49,6 @@ MATCH_MOST = 6.0  # m
 UNSURE = 50.0  # m: the sigma of a pose we know nothing about
 HALF_VIEW = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}  # degrees each side of the head (synch see, v18+)
 QUANT = 0.05  # relative distance error of moving objects (the server rounds log(distance) to 0.1)
-# A ball sighted further than this from where it was believed to roll (plus its distance's rounding)
-# moved otherwise than believed: somebody else played it.
-BALL_SURPRISE = 0.3  # m
-BALL_TRACK_GAP = 3  # cycles: two sightings this close in time give the ball's velocity between them
 
 # rcssserver play modes the embedded simulator's names do not have, as the nearest of those.
 _FOUL = (
@@ -162,11 +158,6 @@ class Belief:
     # Turns, moves and kicks we sent, by command: (the server's counter of it when sent, the sense_body
     # cycle then, its effect). Applied once a sense_body's counter shows the server executed it.
     pending: dict[str, tuple[int | None, int, tuple[float, ...]]] = field(default_factory=dict)
-    # The latest sighting of the ball in play: (cycle, where it was from us), and how far we have
-    # moved since (dead reckoning): the ball's own motion between two sightings, without the
-    # jitter of our localisation.
-    ball_sighting: tuple[int, float, float] | None = None
-    walked: tuple[float, float] = (0.0, 0.0)
 
     # ---- reading the server ---------------------------------------------------
 
@@ -224,7 +215,6 @@ class Belief:
             self.note_error(f"unknown referee message {mode!r}: the play mode stays {self.mode}")
             return
         self.server_mode = mode
-        self.ball_sighting = None  # (a placed ball did not roll there)
         self._place_ball(mode)
         if mode.startswith(("goal_l_", "goal_r_")) and mode[7:].isdigit():
             self.score[Side(mode[5])] = int(mode[7:])
@@ -295,7 +285,6 @@ class Belief:
         step = decay if not collided else -0.1 * decay
         me.x += me.vx / step
         me.y += me.vy / step
-        self.walked = (self.walked[0] + me.vx / step, self.walked[1] + me.vy / step)
         me.sigma += SELF_SIGMA_GROWTH
         me.sigma_head += 1.0
         self._roll_on(collided)
@@ -369,13 +358,10 @@ class Belief:
             x, y = me.x + d * math.cos(head + a), me.y + d * math.sin(head + a)
             sigma = me.sigma + QUANT * d
             if name[0] in ("b", "B"):
+                vx, vy = self.ball.vx if self.ball else 0.0, self.ball.vy if self.ball else 0.0
                 if len(obj.extra) >= 2 and isinstance(obj.extra[0], float):
                     vx, vy = _velocity(d, a, obj.extra[0], obj.extra[1], head, me)
-                else:  # (felt outside the view cone, or too far: the server gives no velocity)
-                    vx, vy = self._ball_motion(x - me.x, y - me.y, d, see.time)
                 self.ball = Track(x, y, vx, vy, sigma, see.time)
-                self.ball_sighting = (see.time, x - me.x, y - me.y) if self.server_mode == "play_on" else None
-                self.walked = (0.0, 0.0)
                 continue
             track = Track(x, y, sigma=sigma, seen=see.time, goalie="goalie" in name)
             numbers = [v for v in obj.extra if isinstance(v, float)]
@@ -394,34 +380,6 @@ class Belief:
             # The server shows the ball wherever it is in the view cone, and within visible_distance
             # all around: not seen there, it is not where we believed (taken, kicked, placed).
             self.ball = None
-
-    def _ball_motion(self, rx: float, ry: float, d: float, now: int) -> tuple[float, float]:
-        """The ball's velocity (server frame, m/cycle) when a see shows it ``(rx, ry)`` from us without one.
-
-        Where it was believed to roll to, the believed velocity stands. A ball sighted elsewhere was
-        played by somebody else (a team-mate's pass, an opponent's touch): its velocity is then the way
-        it went since the sighting before, if that was lately and in play. Keeping the old velocity
-        there sent our passes off by up to 110 degrees (the kick takes out the velocity it believes).
-        """
-        ball, me = self.ball, self.me
-        if ball is None:
-            return 0.0, 0.0
-        if math.hypot(me.x + rx - ball.x, me.y + ry - ball.y) <= BALL_SURPRISE + QUANT * d:
-            return ball.vx, ball.vy
-        last = self.ball_sighting
-        if last is None or self.server_mode != "play_on" or not 0 < now - last[0] <= BALL_TRACK_GAP:
-            return ball.vx, ball.vy
-        decay = float(self.server.get("ball_decay", 0.94))
-        cycles = now - last[0]
-        # Rolled freely from the last sighting: the way it went is v (1 + decay + ...), v now decayed.
-        moved_x, moved_y = rx - last[1] + self.walked[0], ry - last[2] + self.walked[1]
-        scale = decay**cycles / sum(decay**k for k in range(cycles))
-        vx, vy = moved_x * scale, moved_y * scale
-        top = float(self.server.get("ball_speed_max", 3.0))
-        speed = math.hypot(vx, vy)
-        if speed > top:  # (noise on a short gap: no faster than a ball goes)
-            vx, vy = vx * top / speed, vy * top / speed
-        return vx, vy
 
     def _identify(self, now: int) -> None:
         """Give sightings without a number to the known players they most likely are, nearest first.
