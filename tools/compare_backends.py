@@ -45,8 +45,7 @@ class BackEnd:
     def add(self, match: Path, team: str) -> None:
         frames, side, _ = game(match, team)
         for (why, _half), o in ball_use(match, team).items():
-            u = self.uses[why]
-            u.kept, u.lost = u.kept + o.kept, u.lost + o.lost
+            self.uses[why].add(o)
         self.cycles += sum(1 for _, mode, _, _ in frames if mode == "play_on")
         self.kicks += sum(1 for i, s, *_ in kick_events(frames) if s == side and frames[i][1] == "play_on")
         self.shots += shots_of(frames)[side]
