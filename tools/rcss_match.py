@@ -38,6 +38,8 @@ from pathlib import Path
 from ament_index_python.packages import get_package_prefix
 from proctree import CpuMeter, descendants
 
+TEAM_EXIT_WAIT = 60.0  # s the team has to leave once time is over (it leaves as soon as it can)
+
 
 def udp_port_open(port: int) -> bool:
     for table in ("/proc/net/udp", "/proc/net/udp6"):
@@ -256,7 +258,9 @@ def run(args: argparse.Namespace) -> dict:
         summary["seconds"] = round(time.monotonic() - t0, 1)
         summary["our_cpu_ms_per_cycle"] = round(1000 * meter.used() / cycles, 2)
         summary["our_cpu_ms_per_player_cycle"] = round(1000 * meter.used() / cycles / args.players, 2)
-        end = time.monotonic() + 15
+        # The team leaves on its own once time is over; on a loaded machine (a CI run beside it) its
+        # eleven players, their decisions and the ComMAg had not shut down 15 s after.
+        end = time.monotonic() + TEAM_EXIT_WAIT
         while any(p.poll() is None for p in team_procs) and time.monotonic() < end:
             trainer.poll()
         summary["team_exit_codes"] = [p.poll() for p in team_procs]
