@@ -40,6 +40,7 @@ from .policy import decide
 from .receive import Announced, to_announce
 from .requests import ActionRequests, choice_text, request_text
 from .set_piece import KICKING, SetPieceTaker
+from .shared import merged, to_tell
 from .situation import Decision, xy
 from .touch import LastTouch
 from .without_ball import NEVER, state_eta
@@ -90,6 +91,7 @@ class DecisionNode(GuardedNode, Node):
         )
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
         self.passes: dict[int, Announced] = {}  # team-mate number (or mine) -> the last pass he announced
+        self.told: dict[int, WorldState] = {}  # team-mate number -> what he told he saw last (shared.py)
         self.last_ball: tuple[float, float] | None = None  # where I believed the ball last
         self.perception: str | None = None
         self.subscription = None
@@ -143,6 +145,11 @@ class DecisionNode(GuardedNode, Node):
             return
         if not isinstance(state, WorldState) or not self._acting():
             return
+        word = to_tell(state)  # (my own sighting: not an echo of what team-mates told)
+        if word is not None:
+            self._tell_mates(dumps(to_sexp(word)))
+        state, taken = merged(state, self.told.values())
+        self.requests.stats.from_mates += taken
         if self.last_time is not None and state.time > self.last_time + 1:
             self.requests.stats.missed += state.time - self.last_time - 1
         self.last_time = state.time
@@ -215,6 +222,9 @@ class DecisionNode(GuardedNode, Node):
             return
         try:
             expr = parse_expr(msg.content or "")
+            if isinstance(expr, WorldState):
+                self._heard_sighting(expr)
+                return
             number = expr.key["playerNumber"]
             if type(number) is not int or not 1 <= number <= 11 or number == self.number:
                 return  # a shirt number of a team-mate only: what is kept per sender stays bounded
@@ -226,6 +236,15 @@ class DecisionNode(GuardedNode, Node):
             self.claims[number] = (int(dict(msg.user)["X-eta"]), time.monotonic())
         except (LanguageError, AttributeError, KeyError, TypeError, ValueError):
             return
+
+    def _heard_sighting(self, word: WorldState) -> None:
+        """Keep what a team-mate told he saw (his latest word only)."""
+        me = word.me
+        number = me.player_number if me is not None else None
+        if me is None or me.which_team is not Team.OUR or type(number) is not int or not 1 <= number <= 11:
+            return
+        if number != self.number:
+            self.told[number] = word
 
 
 def main() -> int:

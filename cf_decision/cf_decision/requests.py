@@ -61,6 +61,7 @@ class RequestStats:
     done: int = 0
     failed: int = 0  # the request in force failed or was refused
     replaced: int = 0  # answers to requests we had replaced already (ignored)
+    from_mates: int = 0  # players' positions taken from what team-mates told they saw (shared.py)
     choices: Counter = field(default_factory=Counter)  # why the ball was played as it was, by reason
 
     def chose(self, why: str) -> None:
@@ -73,8 +74,8 @@ class RequestStats:
         played = ", ".join(f"{why} {n}" for why, n in self.choices.most_common())
         return (
             f"{self.cycles} cycles ({self.missed} missed), {self.requests} requests ({per:.2f} per cycle), {self.resends} re-sends,"
-            f" {self.done} done, {self.failed} failed, {self.replaced} answers to replaced requests"
-            + (f"; with the ball: {played}" if played else "")
+            f" {self.done} done, {self.failed} failed, {self.replaced} answers to replaced requests,"
+            f" {self.from_mates} positions from team-mates" + (f"; with the ball: {played}" if played else "")
         )
 
 

@@ -1,0 +1,122 @@
+"""What team-mates see, shared (ROS-free).
+
+Each decision component tells its team-mates' decision components, every cycle, where its player
+is and the opponents he saw this cycle (:func:`to_tell`: a WorldState, the Framework Language's
+word for what one player perceives). Each merges what it heard into its own picture where that is
+surer (:func:`merged`). A player's own position is known to a few decimetres, his picture of a
+team-mate behind him may be seconds old; and against HELIOS base most of our passes lost from our
+half were chosen on a picture in which the man who cut them out was more than 2 m from where he
+stood (docs/performance.md, session 41), while a team-mate nearer him had just seen him.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from cf_lang.ontology import Player, Team, WorldState
+
+from .situation import dist, xy
+
+TELL_SIGMA = 2.0  # m: an opponent seen this cycle is told when his position is this sure
+HEARD_AGE = 2  # cycles: what a team-mate told is used this long
+SIGMA_GROWTH = 0.4  # m per cycle: how a told position's uncertainty grows (the rcss belief's, for unseen men)
+SAME_MAN = 2.0  # m: a player without a number this near a told one (plus the growth) is him
+MOST_TOLD = 22  # players read from one word (a word with more is cut: what is kept stays bounded)
+
+
+def to_tell(state: WorldState) -> WorldState | None:
+    """What I tell team-mates this cycle: my player where he believes he is, and the opponents with a
+    number he saw this cycle within TELL_SIGMA; None before he knows who and where he is."""
+    me = state.me
+    if me is None or me.positioning is None or me.player_number is None:
+        return None
+    seen = tuple(
+        Player(player_number=p.player_number, which_team=Team.OPP, is_goalie=p.is_goalie, positioning=p.positioning)
+        for p in state.players
+        if p.which_team is Team.OPP
+        and p.player_number is not None
+        and p.positioning is not None
+        and (p.age or 0) == 0
+        and _sigma(p) <= TELL_SIGMA
+    )
+    myself = Player(
+        player_number=me.player_number, which_team=Team.OUR, positioning=me.positioning, top_speed=me.top_speed
+    )
+    return WorldState(time=state.time, me=myself, players=seen)
+
+
+def merged(state: WorldState, heard: Iterable[WorldState]) -> tuple[WorldState, int]:
+    """My picture with team-mates' words merged in, and how many players it took from them.
+
+    A told player (a team-mate where he said he was, an opponent a team-mate saw) replaces mine of
+    the same team and number when his position is surer: its sigma, grown SIGMA_GROWTH a cycle since
+    it was told, is smaller than mine; without sigmas, when it is fresher. One I did not have is
+    added, and a player without a number believed within SAME_MAN of him is taken to be him (the
+    rcss belief keeps a man seen too far to read his number as such). Words older than HEARD_AGE
+    cycles, or from the future, are passed over; my own player is never replaced.
+    """
+    players, taken = list(state.players), 0
+    mine = state.me.player_number if state.me else None
+    for word in heard:
+        late = state.time - word.time
+        if not 0 <= late <= HEARD_AGE:
+            continue
+        for told in ((word.me,) if word.me else ()) + word.players[:MOST_TOLD]:
+            if told.positioning is None or told.player_number is None or told.which_team is None:
+                continue
+            if told.which_team is Team.OUR and told.player_number == mine:
+                continue
+            sigma = None if told.positioning.sigma_x is None else told.positioning.sigma_x + SIGMA_GROWTH * late
+            now = Player(
+                player_number=told.player_number,
+                which_team=told.which_team,
+                is_goalie=told.is_goalie,
+                top_speed=told.top_speed,
+                positioning=told.positioning.model_copy(update={"sigma_x": sigma, "sigma_y": sigma}),
+                age=(told.age or 0) + late,
+            )
+            same = next(
+                (
+                    i
+                    for i, p in enumerate(players)
+                    if p.which_team is told.which_team and p.player_number == told.player_number
+                ),
+                None,
+            )
+            if same is not None:
+                if not _surer(now, players[same]):
+                    continue
+                # (His type's top speed, a goalkeeper's flag: what I knew of him stays.)
+                keep = players[same]
+                players[same] = now.model_copy(
+                    update={"top_speed": keep.top_speed or now.top_speed, "is_goalie": keep.is_goalie or now.is_goalie}
+                )
+            else:
+                gate = SAME_MAN + SIGMA_GROWTH * late
+                players = [p for p in players if not _unnamed_near(p, now, gate)]
+                players.append(now)
+            taken += 1
+    if not taken:
+        return state, 0
+    return state.model_copy(update={"players": tuple(players)}), taken
+
+
+def _sigma(p: Player) -> float:
+    return p.positioning.sigma_x if p.positioning and p.positioning.sigma_x is not None else 0.0
+
+
+def _surer(told: Player, mine: Player) -> bool:
+    if mine.positioning is None:
+        return True
+    if told.positioning.sigma_x is not None and mine.positioning.sigma_x is not None:
+        return told.positioning.sigma_x < mine.positioning.sigma_x
+    return (told.age or 0) < (mine.age or 0)
+
+
+def _unnamed_near(p: Player, told: Player, gate: float) -> bool:
+    return (
+        p.player_number is None
+        and p.which_team in (None, told.which_team)
+        and p.positioning is not None
+        and dist(xy(p.positioning), xy(told.positioning)) <= gate
+    )
