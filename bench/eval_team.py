@@ -3,8 +3,8 @@
 Plays seeded matches on the simulator core, in-process and without ROS, but through the same
 pieces the nodes use: each cf_decision player perceives with `perception.observe` (view cone,
 noise), decides with `cf_decision.policy.decide` and acts through `skills.skill_for`; team-mates
-share their times to the ball and the passes they ask for as the decision components do over ACL
-(a pass is heard in the next cycle).
+share their times to the ball, the passes they ask for and what they see (``shared.py``) as the
+decision components do over ACL (a pass is heard in the next cycle, a sighting in the same).
 
     python bench/eval_team.py [--matches 10] [--players 11] [--half-cycles 1500] [--opponent chasers|ours]
                               [--out DIR] [--player-types 18]
@@ -30,6 +30,7 @@ from cf_decision.policy import decide
 from cf_decision.receive import Announced, to_announce
 from cf_decision.requests import choice_text, same_request
 from cf_decision.set_piece import KICKING, SetPieceTaker
+from cf_decision.shared import merged, to_tell
 from cf_decision.touch import LastTouch
 from cf_decision.without_ball import NEVER, state_eta
 from cf_lang.ontology import Team
@@ -74,8 +75,10 @@ class PolicyTeam:
             eta = state_eta(st)
             if eta is not None:
                 claims[n] = eta if may_touch[n] else NEVER
+        words = {n: to_tell(st) for n, st in states.items()}
         asked = []
         for n, st in states.items():
+            st, _ = merged(st, [word for m, word in words.items() if m != n and word is not None])
             me = w.player(self.side, n)
             mine = w.as_player(me)  # the skills read my type's parameters
             touch = self.touches.setdefault(n, LastTouch())

@@ -145,18 +145,60 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     ):
         mates[4].send(AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=content, user=user))
 
-    # 3. Now blue 7 has the ball, mate 9 stands free 20 m up the field: blue 7 passes, and tells
-    # its team-mates; the text they get is the request the action provider got.
+    # 3a. Blue 7 tells its team-mates where it is (a WorldState: what one player perceives).
+    def own_word():
+        words = [parse_expr(m.content) for m in heard[9] if (m.content or "").startswith("(WorldState ")]
+        return next((w for w in words if w.me.player_number == 7 and w.me.positioning.x == here[0]), None)
+
+    play(lambda t: world(t, here, ball, team_mates), own_word, "blue 7 to tell where it is")
+
+    # 3b. Mate 9, 20 m up the field, tells blue 7 of an opponent in the lane between them that
+    # blue 7 does not see: with the ball at its feet, blue 7 does not pass to mate 9.
     mine = (0.0, 0.0)
     free = {4: (-30.0, 0.0), 9: (20.0, 5.0)}
+    cut = Player(player_number=5, which_team=Team.OPP, positioning=AbsolutePositioning(x=10.0, y=2.5, sigma_x=0.5))
+
+    def cycle_with_word(t, ball_at):
+        word = WorldState(
+            time=t, me=Player(player_number=9, which_team=Team.OUR, positioning=at(*free[9])), players=(cut,)
+        )
+        mates[9].send(AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=unparse(word)))
+        return world(t, mine, ball_at, free)
+
+    for _ in range(3):  # (the word before the ball: an inform may overtake a perception)
+        perception.publish(cycle_with_word(next(clock), (6.0, 0.0)))
+        probe.spin_for(0.1)
+    since = len(requests)
+
+    def kicking():
+        kinds = [r for r in requests[since:] if isinstance(r, Exec) and r.method in ("pass", "dribble", "shoot")]
+        return kinds[-1] if kinds else None
+
+    def to_mate_9(r):
+        """A pass to mate 9's feet or to a point ahead of him (a through ball, 5-10 m)."""
+        if r.method != "pass":
+            return False
+        a = r.action
+        if a.to is not None:
+            return a.to.player_number == 9
+        return 19.0 <= a.target.x <= 31.0 and abs(a.target.y - 5.0) < 1.0
+
+    played = play(lambda t: cycle_with_word(t, (0.5, 0.0)), kicking, "blue 7 to play the ball")
+    assert not to_mate_9(played), played
+
+    # 3c. Mate 9's word no longer holds that man: blue 7 passes to it, and tells
+    # its team-mates; the text they get is the request the action provider got.
+    after = len(heard[9])
 
     def told_pass():
-        return [m for m in heard[9] if (m.content or "").startswith("(exec Player pass :playerNumber 7")]
+        texts = [m for m in heard[9][after:] if (m.content or "").startswith("(exec Player pass :playerNumber 7")]
+        return [m for m in texts if parse_expr(m.content) != played]  # (not 3b's kick into space)
 
     its_word = play(lambda t: world(t, mine, (0.5, 0.0), free), told_pass, "blue 7 to tell its pass")[0]
     passes = [r for r in requests if isinstance(r, Exec) and r.method == "pass"]
     assert passes, requests
     assert parse_expr(its_word.content) == passes[-1] and its_word.performative is Performative.INFORM
+    assert to_mate_9(passes[-1]), passes[-1]  # (without the word, the pass 3b did not play)
     assert any((m.content or "").startswith("(exec Player pass :playerNumber 7") for m in heard[4])
 
     # 4. The ball on its way to mate 9, blue 7 (a midfielder) runs on up the field for it back,

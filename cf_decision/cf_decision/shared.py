@@ -57,6 +57,7 @@ def merged(state: WorldState, heard: Iterable[WorldState]) -> tuple[WorldState, 
     """
     players, taken = list(state.players), 0
     mine = state.me.player_number if state.me else None
+    index = {(p.which_team, p.player_number): i for i, p in enumerate(players) if p.player_number is not None}
     for word in heard:
         late = state.time - word.time
         if not 0 <= late <= HEARD_AGE:
@@ -64,28 +65,24 @@ def merged(state: WorldState, heard: Iterable[WorldState]) -> tuple[WorldState, 
         for told in ((word.me,) if word.me else ()) + word.players[:MOST_TOLD]:
             if told.positioning is None or told.player_number is None or told.which_team is None:
                 continue
-            if told.which_team is Team.OUR and told.player_number == mine:
+            key = (told.which_team, told.player_number)
+            if key == (Team.OUR, mine):
                 continue
             sigma = None if told.positioning.sigma_x is None else told.positioning.sigma_x + SIGMA_GROWTH * late
-            now = Player(
-                player_number=told.player_number,
-                which_team=told.which_team,
-                is_goalie=told.is_goalie,
-                top_speed=told.top_speed,
-                positioning=told.positioning.model_copy(update={"sigma_x": sigma, "sigma_y": sigma}),
-                age=(told.age or 0) + late,
-            )
-            same = next(
-                (
-                    i
-                    for i, p in enumerate(players)
-                    if p.which_team is told.which_team and p.player_number == told.player_number
-                ),
-                None,
+            age = (told.age or 0) + late
+            same = index.get(key)
+            if same is not None and not _surer(sigma, age, players[same]):
+                continue
+            # (Built only when taken: pydantic models are dear, and ten words a cycle are merged.)
+            now = told.model_copy(
+                update={
+                    "positioning": told.positioning.model_copy(update={"sigma_x": sigma, "sigma_y": sigma}),
+                    "age": age,
+                    "relative": None,
+                    "velocity": None,
+                }
             )
             if same is not None:
-                if not _surer(now, players[same]):
-                    continue
                 # (His type's top speed, a goalkeeper's flag: what I knew of him stays.)
                 keep = players[same]
                 players[same] = now.model_copy(
@@ -95,6 +92,9 @@ def merged(state: WorldState, heard: Iterable[WorldState]) -> tuple[WorldState, 
                 gate = SAME_MAN + SIGMA_GROWTH * late
                 players = [p for p in players if not _unnamed_near(p, now, gate)]
                 players.append(now)
+                index = {
+                    (p.which_team, p.player_number): i for i, p in enumerate(players) if p.player_number is not None
+                }
             taken += 1
     if not taken:
         return state, 0
@@ -105,12 +105,12 @@ def _sigma(p: Player) -> float:
     return p.positioning.sigma_x if p.positioning and p.positioning.sigma_x is not None else 0.0
 
 
-def _surer(told: Player, mine: Player) -> bool:
+def _surer(sigma: float | None, age: int, mine: Player) -> bool:
     if mine.positioning is None:
         return True
-    if told.positioning.sigma_x is not None and mine.positioning.sigma_x is not None:
-        return told.positioning.sigma_x < mine.positioning.sigma_x
-    return (told.age or 0) < (mine.age or 0)
+    if sigma is not None and mine.positioning.sigma_x is not None:
+        return sigma < mine.positioning.sigma_x
+    return age < (mine.age or 0)
 
 
 def _unnamed_near(p: Player, told: Player, gate: float) -> bool:
