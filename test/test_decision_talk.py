@@ -145,12 +145,14 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     ):
         mates[4].send(AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=content, user=user))
 
-    # 3a. Blue 7 tells its team-mates where it is (a WorldState: what one player perceives).
+    # 3a. Blue 7 tells its team-mates where it is (a WorldState: what one player perceives), its
+    # time to the ball riding on the word.
     def own_word():
-        words = [parse_expr(m.content) for m in heard[9] if (m.content or "").startswith("(WorldState ")]
-        return next((w for w in words if w.me.player_number == 7 and w.me.positioning.x == here[0]), None)
+        words = [m for m in heard[9] if (m.content or "").startswith("(WorldState ")]
+        return next((m for m in words if parse_expr(m.content).me.positioning.x == here[0]), None)
 
-    play(lambda t: world(t, here, ball, team_mates), own_word, "blue 7 to tell where it is")
+    word = play(lambda t: world(t, here, ball, team_mates), own_word, "blue 7 to tell where it is")
+    assert parse_expr(word.content).me.player_number == 7 and int(dict(word.user)["X-eta"]) > 0
 
     # 3b. Mate 9, 20 m up the field, tells blue 7 of an opponent in the lane between them that
     # blue 7 does not see: with the ball at its feet, blue 7 does not pass to mate 9.
@@ -162,7 +164,10 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
         word = WorldState(
             time=t, me=Player(player_number=9, which_team=Team.OUR, positioning=at(*free[9])), players=(cut,)
         )
-        mates[9].send(AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=unparse(word)))
+        told = AclMessage(
+            Performative.INFORM, receivers=(AgentId(decision),), content=unparse(word), user=(("X-eta", "9"),)
+        )
+        mates[9].send(told)
         return world(t, mine, ball_at, free)
 
     for _ in range(3):  # (the word before the ball: an inform may overtake a perception)
@@ -185,6 +190,8 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
 
     played = play(lambda t: cycle_with_word(t, (0.5, 0.0)), kicking, "blue 7 to play the ball")
     assert not to_mate_9(played), played
+    logged = [line for line in procs.log("decision").splitlines() if "request t=" in line]
+    assert any(" | claims 4:0 9:9 | " in line for line in logged), logged[-3:]  # (mate 9's time, on its word)
 
     # 3c. Mate 9's word no longer holds that man: blue 7 passes to it, and tells
     # its team-mates; the text they get is the request the action provider got.

@@ -146,8 +146,6 @@ class DecisionNode(GuardedNode, Node):
         if not isinstance(state, WorldState) or not self._acting():
             return
         word = to_tell(state)  # (my own sighting: not an echo of what team-mates told)
-        if word is not None:
-            self._tell_mates(dumps(to_sexp(word)))
         state, taken = merged(state, self.told.values())
         self.requests.stats.from_mates += taken
         if self.last_time is not None and state.time > self.last_time + 1:
@@ -162,7 +160,7 @@ class DecisionNode(GuardedNode, Node):
         passes = list(self.passes.values())
         decision = decide(state, self.number, self.team_size, claims, may_touch, passes, mate_touched)
         self.taker.decided(state, decision)
-        self._announce(state, may_touch)
+        self._announce(state, may_touch, word)
         if self.requests.wants(decision.method, decision.action):
             if decision.method in KICKING:
                 # One line per new way of playing the ball: what a match analysis needs, a few a minute.
@@ -195,15 +193,22 @@ class DecisionNode(GuardedNode, Node):
         # about the request in force, which must not be sent again because of it.
         self.requests.answered(future, future.result().ok)
 
-    def _announce(self, state: WorldState, may_touch: bool = True) -> None:
-        """Tell team-mates' decision components how soon I can reach the ball (never, while I may not touch it)."""
+    def _announce(self, state: WorldState, may_touch: bool = True, word: WorldState | None = None) -> None:
+        """Tell team-mates' decision components what my player sees (``word``) and how soon he can
+        reach the ball (never, while he may not touch it): one inform a cycle.
+
+        The time to the ball rides on the word as ``:X-eta``; without a word (my player does not
+        know where he is yet) the content is ``(exec Player intercept ...)``. Two informs a cycle to
+        each team-mate cost our team about a third more CPU than one (docs/performance.md, session 42).
+        """
         eta = state_eta(state)
-        if eta is None:
-            return
-        if not may_touch:
+        if eta is not None and not may_touch:
             eta = NEVER
-        content = f"(exec Player intercept :playerNumber {self.number} :whichTeam our)"
-        self._tell_mates(content, (("X-eta", str(eta)),))
+        user = () if eta is None else (("X-eta", str(eta)),)
+        if word is not None:
+            self._tell_mates(dumps(to_sexp(word)), user)
+        elif user:
+            self._tell_mates(f"(exec Player intercept :playerNumber {self.number} :whichTeam our)", user)
 
     def _tell_mates(self, content: str, user: tuple = ()) -> None:
         """Inform my team-mates' decision components of ``content``."""
@@ -222,29 +227,28 @@ class DecisionNode(GuardedNode, Node):
             return
         try:
             expr = parse_expr(msg.content or "")
-            if isinstance(expr, WorldState):
-                self._heard_sighting(expr)
-                return
-            number = expr.key["playerNumber"]
+            # A team-mate's word (what he sees, with his time to the ball), or an exec he asked for.
+            number = self._heard_sighting(expr) if isinstance(expr, WorldState) else expr.key["playerNumber"]
             if type(number) is not int or not 1 <= number <= 11 or number == self.number:
                 return  # a shirt number of a team-mate only: what is kept per sender stays bounded
-            if expr.method == "pass" and isinstance(expr.action, act.Pass):
+            if isinstance(expr, Exec) and expr.method == "pass" and isinstance(expr.action, act.Pass):
                 if self.last_ball is not None and self.last_time is not None:
                     self.passes[number] = Announced(number, expr.action, self.last_ball, self.last_time + 1)
                     self.touch.played_by_mate()
                 return
-            self.claims[number] = (int(dict(msg.user)["X-eta"]), time.monotonic())
+            self.claims[number] = (int(dict(msg.user)["X-eta"]), time.monotonic())  # (KeyError: a word without)
         except (LanguageError, AttributeError, KeyError, TypeError, ValueError):
             return
 
-    def _heard_sighting(self, word: WorldState) -> None:
-        """Keep what a team-mate told he saw (his latest word only)."""
+    def _heard_sighting(self, word: WorldState) -> int | None:
+        """Keep what a team-mate told he saw (his latest word only); his number, None if not a team-mate's."""
         me = word.me
         number = me.player_number if me is not None else None
         if me is None or me.which_team is not Team.OUR or type(number) is not int or not 1 <= number <= 11:
-            return
+            return None
         if number != self.number:
             self.told[number] = word
+        return number
 
 
 def main() -> int:
