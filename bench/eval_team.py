@@ -30,7 +30,7 @@ from cf_decision.policy import decide
 from cf_decision.receive import Announced, to_announce
 from cf_decision.requests import choice_text, same_request
 from cf_decision.set_piece import KICKING, SetPieceTaker
-from cf_decision.shared import merged, to_tell
+from cf_decision.shared import merged, to_tell, told_to
 from cf_decision.touch import LastTouch
 from cf_decision.without_ball import NEVER, state_eta
 from cf_lang.ontology import Team
@@ -76,9 +76,11 @@ class PolicyTeam:
             if eta is not None:
                 claims[n] = eta if may_touch[n] else NEVER
         words = {n: to_tell(st) for n, st in states.items()}
+        near = told_to(claims)  # (the team-mates a word goes to)
         asked = []
         for n, st in states.items():
-            st, _ = merged(st, [word for m, word in words.items() if m != n and word is not None])
+            if n in near:
+                st, _ = merged(st, [word for m, word in words.items() if m != n and word is not None])
             me = w.player(self.side, n)
             mine = w.as_player(me)  # the skills read my type's parameters
             touch = self.touches.setdefault(n, LastTouch())

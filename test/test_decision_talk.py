@@ -145,14 +145,18 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     ):
         mates[4].send(AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=content, user=user))
 
-    # 3a. Blue 7 tells its team-mates where it is (a WorldState: what one player perceives), its
-    # time to the ball riding on the word.
-    def own_word():
-        words = [m for m in heard[9] if (m.content or "").startswith("(WorldState ")]
+    # 3a. Blue 7 tells the team-mates who may play the ball next (mate 4 claims it at once) where
+    # it is (a WorldState: what one player perceives), its time to the ball riding on the word; a
+    # team-mate far from the ball (mate 9, no claim) hears the time alone, in a plain claim.
+    def own_word(n):
+        words = [m for m in heard[n] if (m.content or "").startswith("(WorldState ")]
         return next((m for m in words if parse_expr(m.content).me.positioning.x == here[0]), None)
 
-    word = play(lambda t: world(t, here, ball, team_mates), own_word, "blue 7 to tell where it is")
+    word = play(lambda t: world(t, here, ball, team_mates), lambda: own_word(4), "blue 7 to tell where it is")
     assert parse_expr(word.content).me.player_number == 7 and int(dict(word.user)["X-eta"]) > 0
+    assert not any((m.content or "").startswith("(WorldState ") for m in heard[9])
+    plain = [m for m in heard[9] if m.content == "(exec Player intercept :playerNumber 7 :whichTeam our)"]
+    assert plain and int(dict(plain[-1].user)["X-eta"]) > 0
 
     # 3b. Mate 9, 20 m up the field, tells blue 7 of an opponent in the lane between them that
     # blue 7 does not see: with the ball at its feet, blue 7 does not pass to mate 9.

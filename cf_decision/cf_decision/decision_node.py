@@ -40,7 +40,7 @@ from .policy import decide
 from .receive import Announced, to_announce
 from .requests import ActionRequests, choice_text, request_text
 from .set_piece import KICKING, SetPieceTaker
-from .shared import merged, to_tell
+from .shared import merged, to_tell, told_to
 from .situation import Decision, xy
 from .touch import LastTouch
 from .without_ball import NEVER, state_eta
@@ -160,7 +160,7 @@ class DecisionNode(GuardedNode, Node):
         passes = list(self.passes.values())
         decision = decide(state, self.number, self.team_size, claims, may_touch, passes, mate_touched)
         self.taker.decided(state, decision)
-        self._announce(state, may_touch, word)
+        self._announce(state, may_touch, word, claims)
         if self.requests.wants(decision.method, decision.action):
             if decision.method in KICKING:
                 # One line per new way of playing the ball: what a match analysis needs, a few a minute.
@@ -193,22 +193,26 @@ class DecisionNode(GuardedNode, Node):
         # about the request in force, which must not be sent again because of it.
         self.requests.answered(future, future.result().ok)
 
-    def _announce(self, state: WorldState, may_touch: bool = True, word: WorldState | None = None) -> None:
-        """Tell team-mates' decision components what my player sees (``word``) and how soon he can
-        reach the ball (never, while he may not touch it): one inform a cycle.
+    def _announce(self, state: WorldState, may_touch: bool, word: WorldState | None, claims: dict[int, int]) -> None:
+        """Tell team-mates' decision components how soon my player can reach the ball (never, while
+        he may not touch it), and those who may play it next (``shared.told_to``) what he sees
+        (``word``): one inform a cycle to each.
 
-        The time to the ball rides on the word as ``:X-eta``; without a word (my player does not
-        know where he is yet) the content is ``(exec Player intercept ...)``. Two informs a cycle to
-        each team-mate cost our team about a third more CPU than one (docs/performance.md, session 42).
+        The time to the ball is the user-defined parameter ``:X-eta``; the content is the word, or
+        ``(exec Player intercept ...)`` for the others and while my player does not know where he is.
         """
         eta = state_eta(state)
         if eta is not None and not may_touch:
             eta = NEVER
         user = () if eta is None else (("X-eta", str(eta)),)
-        if word is not None:
-            self._tell_mates(dumps(to_sexp(word)), user)
-        elif user:
-            self._tell_mates(f"(exec Player intercept :playerNumber {self.number} :whichTeam our)", user)
+        near = told_to(claims) if word is not None else set()
+        mates = {e.record.player_number: e.name for e in self.agent.providers("PlayerDecision", team=self.team)}
+        mates.pop(self.number, None)
+        if near & mates.keys():
+            self._send(dumps(to_sexp(word)), [name for n, name in mates.items() if n in near], user)
+        others = [name for n, name in mates.items() if n not in near]
+        if user and others:
+            self._send(f"(exec Player intercept :playerNumber {self.number} :whichTeam our)", others, user)
 
     def _tell_mates(self, content: str, user: tuple = ()) -> None:
         """Inform my team-mates' decision components of ``content``."""
@@ -217,10 +221,12 @@ class DecisionNode(GuardedNode, Node):
             for e in self.agent.providers("PlayerDecision", team=self.team)
             if e.record.player_number != self.number
         ]
-        if mates:
-            self.agent.send(
-                AclMessage(Performative.INFORM, receivers=tuple(AgentId(m) for m in mates), content=content, user=user)
-            )
+        self._send(content, mates, user)
+
+    def _send(self, content: str, names: list[str], user: tuple = ()) -> None:
+        if names:
+            receivers = tuple(AgentId(m) for m in names)
+            self.agent.send(AclMessage(Performative.INFORM, receivers=receivers, content=content, user=user))
 
     def _on_message(self, msg: AclMessage) -> None:
         if msg.performative is not Performative.INFORM:

@@ -22,6 +22,15 @@ HEARD_AGE = 2  # cycles: what a team-mate told is used this long
 SIGMA_GROWTH = 0.4  # m per cycle: how a told position's uncertainty grows (the rcss belief's, for unseen men)
 SAME_MAN = 2.0  # m: a player without a number this near a told one (plus the growth) is him
 MOST_TOLD = 22  # players read from one word (a word with more is cut: what is kept stays bounded)
+# A word goes to the team-mates who claim the ball within this many cycles: the ones who choose a
+# pass next. Reading one costs a receiver about 0.5 ms (eight men); told to all ten, every cycle,
+# the words cost our team about 40 ms of CPU a cycle (docs/performance.md, session 42).
+WORD_ETA = 10
+
+
+def told_to(claims: dict[int, int]) -> set[int]:
+    """The team-mates a word goes to: those whose latest claim on the ball is WORD_ETA cycles or less."""
+    return {number for number, eta in claims.items() if eta <= WORD_ETA}
 
 
 def to_tell(state: WorldState) -> WorldState | None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from test_policy import mate, state
 
 from cf_decision.policy import decide
-from cf_decision.shared import HEARD_AGE, merged, to_tell
+from cf_decision.shared import HEARD_AGE, WORD_ETA, merged, to_tell, told_to
 from cf_lang import parse_expr
 from cf_lang.expr import to_sexp
 from cf_lang.ontology import AbsolutePositioning, Player, Team, WorldState
@@ -82,3 +82,7 @@ def test_an_opponent_a_team_mate_sees_in_the_lane_stops_the_pass_i_would_have_pl
     now, _ = merged(mine, heard)
     second = decide(now, 7, 11, {})
     assert "team-mate 9" not in second.why, second
+
+
+def test_a_word_goes_to_the_team_mates_who_may_play_the_ball_next():
+    assert told_to({4: 0, 3: WORD_ETA, 9: WORD_ETA + 1, 2: 40}) == {3, 4}
