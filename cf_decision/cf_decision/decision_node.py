@@ -40,7 +40,7 @@ from .policy import decide
 from .receive import Announced, to_announce
 from .requests import ActionRequests, choice_text, request_text
 from .set_piece import KICKING, SetPieceTaker
-from .shared import merged, to_tell, told_to
+from .shared import Heard, merged, to_tell, told_to
 from .situation import Decision, xy
 from .touch import LastTouch
 from .without_ball import NEVER, state_eta
@@ -91,7 +91,7 @@ class DecisionNode(GuardedNode, Node):
         )
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
         self.passes: dict[int, Announced] = {}  # team-mate number (or mine) -> the last pass he announced
-        self.told: dict[int, WorldState] = {}  # team-mate number -> what he told he saw last (shared.py)
+        self.heard = Heard()  # what team-mates told they saw (shared.py)
         self.last_ball: tuple[float, float] | None = None  # where I believed the ball last
         self.perception: str | None = None
         self.subscription = None
@@ -145,8 +145,9 @@ class DecisionNode(GuardedNode, Node):
             return
         if not isinstance(state, WorldState) or not self._acting():
             return
+        self.heard.perceived()
         word = to_tell(state)  # (my own sighting: not an echo of what team-mates told)
-        state, taken = merged(state, self.told.values())
+        state, taken = merged(state, self.heard.recent())
         self.requests.stats.from_mates += taken
         if self.last_time is not None and state.time > self.last_time + 1:
             self.requests.stats.missed += state.time - self.last_time - 1
@@ -253,7 +254,7 @@ class DecisionNode(GuardedNode, Node):
         if me is None or me.which_team is not Team.OUR or type(number) is not int or not 1 <= number <= 11:
             return None
         if number != self.number:
-            self.told[number] = word
+            self.heard.keep(number, word)
         return number
 
 

@@ -1,9 +1,9 @@
 """What team-mates see, shared (ROS-free).
 
-Each decision component tells its team-mates' decision components, every cycle, where its player
-is and the opponents he saw this cycle (:func:`to_tell`: a WorldState, the Framework Language's
-word for what one player perceives). Each merges what it heard into its own picture where that is
-surer (:func:`merged`). A player's own position is known to a few decimetres, his picture of a
+Each decision component tells the team-mates who may play the ball next (:func:`told_to`), every
+cycle, where its player is and the opponents he saw this cycle (:func:`to_tell`: a WorldState, the
+Framework Language's word for what one player perceives). Each merges what it heard into its own
+picture where that is surer (:func:`merged`). A player's own position is known to a few decimetres, his picture of a
 team-mate behind him may be seconds old; and against HELIOS base most of our passes lost from our
 half were chosen on a picture in which the man who cut them out was more than 2 m from where he
 stood (docs/performance.md, session 41), while a team-mate nearer him had just seen him.
@@ -18,7 +18,7 @@ from cf_lang.ontology import Player, Team, WorldState
 from .situation import dist, xy
 
 TELL_SIGMA = 2.0  # m: an opponent seen this cycle is told when his position is this sure
-HEARD_AGE = 2  # cycles: what a team-mate told is used this long
+HEARD_AGE = 2  # cycles (of game time, and of the hearer's perceptions): what a team-mate told is used this long
 SIGMA_GROWTH = 0.4  # m per cycle: how a told position's uncertainty grows (the rcss belief's, for unseen men)
 SAME_MAN = 2.0  # m: a player without a number this near a told one (plus the growth) is him
 MOST_TOLD = 22  # players read from one word (a word with more is cut: what is kept stays bounded)
@@ -31,6 +31,26 @@ WORD_ETA = 10
 def told_to(claims: dict[int, int]) -> set[int]:
     """The team-mates a word goes to: those whose latest claim on the ball is WORD_ETA cycles or less."""
     return {number for number, eta in claims.items() if eta <= WORD_ETA}
+
+
+class Heard:
+    """The latest word of each team-mate, and which of them are recent: heard within HEARD_AGE of my
+    perceptions (while the clock stops at a set piece, a word's game time stays fresh and its
+    count does not)."""
+
+    def __init__(self) -> None:
+        self.words: dict[int, tuple[WorldState, int]] = {}  # team-mate number -> (word, perceptions then)
+        self.perceptions = 0
+
+    def perceived(self) -> None:
+        """Count one perception of mine."""
+        self.perceptions += 1
+
+    def keep(self, number: int, word: WorldState) -> None:
+        self.words[number] = (word, self.perceptions)
+
+    def recent(self) -> list[WorldState]:
+        return [word for word, at in self.words.values() if self.perceptions - at <= HEARD_AGE]
 
 
 def to_tell(state: WorldState) -> WorldState | None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from test_policy import mate, state
 
 from cf_decision.policy import decide
-from cf_decision.shared import HEARD_AGE, WORD_ETA, merged, to_tell, told_to
+from cf_decision.shared import HEARD_AGE, WORD_ETA, Heard, merged, to_tell, told_to
 from cf_lang import parse_expr
 from cf_lang.expr import to_sexp
 from cf_lang.ontology import AbsolutePositioning, Player, Team, WorldState
@@ -86,3 +86,17 @@ def test_an_opponent_a_team_mate_sees_in_the_lane_stops_the_pass_i_would_have_pl
 
 def test_a_word_goes_to_the_team_mates_who_may_play_the_ball_next():
     assert told_to({4: 0, 3: WORD_ETA, 9: WORD_ETA + 1, 2: 40}) == {3, 4}
+
+
+def test_a_word_heard_more_perceptions_ago_than_heard_age_goes_stale_even_while_the_clock_stops():
+    heard = Heard()
+    heard.perceived()
+    heard.keep(9, word(9, (20.0, 0.0), time=500))  # a set piece: game time 500 for a while
+    heard.keep(4, word(4, (-20.0, 0.0), time=500))
+    assert len(heard.recent()) == 2
+    for _ in range(HEARD_AGE):
+        heard.perceived()
+    heard.keep(4, word(4, (-21.0, 0.0), time=500))  # mate 4 still tells, mate 9 no more
+    assert [w.me.player_number for w in heard.recent()] == [9, 4]
+    heard.perceived()
+    assert [w.me.player_number for w in heard.recent()] == [4]
