@@ -15,7 +15,8 @@ from collections.abc import Iterable
 
 from cf_lang.ontology import Player, Team, WorldState
 
-from .situation import dist, xy
+from .set_piece import OUR_SET_PIECES
+from .situation import dist, play_mode, xy
 
 TELL_SIGMA = 2.0  # m: an opponent seen this cycle is told when his position is this sure
 HEARD_AGE = 2  # cycles (of game time, and of the hearer's perceptions): what a team-mate told is used this long
@@ -82,16 +83,21 @@ def merged(state: WorldState, heard: Iterable[WorldState]) -> tuple[WorldState, 
     it was told, is smaller than mine; without sigmas, when it is fresher. One I did not have is
     added, and a player without a number believed within SAME_MAN of him is taken to be him (the
     rcss belief keeps a man seen too far to read his number as such). Words older than HEARD_AGE
-    cycles, or from the future, are passed over; my own player is never replaced.
+    cycles, or from the future, are passed over; my own player is never replaced. At our set piece
+    only team-mates' own places are taken: the taker has time to look (``with_ball.unseen_near``),
+    and a man told from 20-30 m off is rougher than his own look (our set-piece passes from our half
+    were kept 81% of the time before the words, 63-73% with them at every mode: session 42).
     """
     players, taken = list(state.players), 0
+    own_places_only = play_mode(state) in OUR_SET_PIECES
     mine = state.me.player_number if state.me else None
     index = {(p.which_team, p.player_number): i for i, p in enumerate(players) if p.player_number is not None}
     for word in heard:
         late = state.time - word.time
         if not 0 <= late <= HEARD_AGE:
             continue
-        for told in ((word.me,) if word.me else ()) + word.players[:MOST_TOLD]:
+        sightings = () if own_places_only else word.players[:MOST_TOLD]
+        for told in ((word.me,) if word.me else ()) + sightings:
             if told.positioning is None or told.player_number is None or told.which_team is None:
                 continue
             key = (told.which_team, told.player_number)

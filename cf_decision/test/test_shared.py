@@ -8,7 +8,7 @@ from cf_decision.policy import decide
 from cf_decision.shared import HEARD_AGE, WORD_ETA, Heard, merged, to_tell, told_to
 from cf_lang import parse_expr
 from cf_lang.expr import to_sexp
-from cf_lang.ontology import AbsolutePositioning, Player, Team, WorldState
+from cf_lang.ontology import AbsolutePositioning, Player, PlayMode, Team, WorldState
 from cf_lang.sexp import dumps
 
 
@@ -100,3 +100,9 @@ def test_a_word_heard_more_perceptions_ago_than_heard_age_goes_stale_even_while_
     assert [w.me.player_number for w in heard.recent()] == [9, 4]
     heard.perceived()
     assert [w.me.player_number for w in heard.recent()] == [4]
+
+
+def test_at_our_set_piece_only_team_mates_own_places_are_taken():
+    mine = state((0.0, 0.0), (1.0, 0.0), [seen(5, 10.0, 0.0, 3.0, age=6)], mode=PlayMode.FREE_KICK_OUR)
+    now, taken = merged(mine, [word(9, (20.0, 0.0), (seen(5, 11.5, -2.0, 0.4),))])
+    assert where(now, Team.OPP, 5) == (10.0, 0.0) and where(now, Team.OUR, 9) == (20.0, 0.0) and taken == 1
