@@ -142,6 +142,14 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
         ("(exec Player pass :playerNumber 4 :whichTeam our :power 50)", ()),  # neither :to nor :target
         ("(exec Player pass :playerNumber 2.5 :whichTeam our :target (AbsolutePositioning :x 1 :y 2))", ()),
         ("(exec Player pass :playerNumber 4 ((((", ()),
+        # Words that are no team-mate's: an opponent's, one without a player, one claiming blue 7.
+        ("(WorldState :time 5 :me (Player :playerNumber 4 :whichTeam opp))", (("X-eta", "0"),)),
+        ("(WorldState :time 5)", (("X-eta", "0"),)),
+        (
+            "(WorldState :time 5 :me (Player :playerNumber 7 :whichTeam our :positioning "
+            "(AbsolutePositioning :x 40 :y 0)))",
+            (("X-eta", "0"),),
+        ),
     ):
         mates[4].send(AclMessage(Performative.INFORM, receivers=(AgentId(decision),), content=content, user=user))
 
