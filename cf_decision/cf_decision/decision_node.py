@@ -207,22 +207,22 @@ class DecisionNode(GuardedNode, Node):
             eta = NEVER
         user = () if eta is None else (("X-eta", str(eta)),)
         near = told_to(claims) if word is not None else set()
-        mates = {e.record.player_number: e.name for e in self.agent.providers("PlayerDecision", team=self.team)}
-        mates.pop(self.number, None)
+        mates = self._mates()
         if near & mates.keys():
             self._send(dumps(to_sexp(word)), [name for n, name in mates.items() if n in near], user)
         others = [name for n, name in mates.items() if n not in near]
         if user and others:
             self._send(f"(exec Player intercept :playerNumber {self.number} :whichTeam our)", others, user)
 
+    def _mates(self) -> dict[int, str]:
+        """My team-mates' decision components: shirt number -> agent name."""
+        mates = {e.record.player_number: e.name for e in self.agent.providers("PlayerDecision", team=self.team)}
+        mates.pop(self.number, None)
+        return mates
+
     def _tell_mates(self, content: str, user: tuple = ()) -> None:
         """Inform my team-mates' decision components of ``content``."""
-        mates = [
-            e.name
-            for e in self.agent.providers("PlayerDecision", team=self.team)
-            if e.record.player_number != self.number
-        ]
-        self._send(content, mates, user)
+        self._send(content, list(self._mates().values()), user)
 
     def _send(self, content: str, names: list[str], user: tuple = ()) -> None:
         if names:
@@ -235,10 +235,16 @@ class DecisionNode(GuardedNode, Node):
         try:
             expr = parse_expr(msg.content or "")
             # A team-mate's word (what he sees, with his time to the ball), or an exec he asked for.
-            number = self._heard_sighting(expr) if isinstance(expr, WorldState) else expr.key["playerNumber"]
+            word = expr if isinstance(expr, WorldState) else None
+            if word is not None:
+                number = word.me.player_number if word.me and word.me.which_team is Team.OUR else None
+            else:
+                number = expr.key["playerNumber"]
             if type(number) is not int or not 1 <= number <= 11 or number == self.number:
                 return  # a shirt number of a team-mate only: what is kept per sender stays bounded
-            if isinstance(expr, Exec) and expr.method == "pass" and isinstance(expr.action, act.Pass):
+            if word is not None:
+                self.heard.keep(number, word)
+            elif isinstance(expr, Exec) and expr.method == "pass" and isinstance(expr.action, act.Pass):
                 if self.last_ball is not None and self.last_time is not None:
                     self.passes[number] = Announced(number, expr.action, self.last_ball, self.last_time + 1)
                     self.touch.played_by_mate()
@@ -246,16 +252,6 @@ class DecisionNode(GuardedNode, Node):
             self.claims[number] = (int(dict(msg.user)["X-eta"]), time.monotonic())  # (KeyError: a word without)
         except (LanguageError, AttributeError, KeyError, TypeError, ValueError):
             return
-
-    def _heard_sighting(self, word: WorldState) -> int | None:
-        """Keep what a team-mate told he saw (his latest word only); his number, None if not a team-mate's."""
-        me = word.me
-        number = me.player_number if me is not None else None
-        if me is None or me.which_team is not Team.OUR or type(number) is not int or not 1 <= number <= 11:
-            return None
-        if number != self.number:
-            self.heard.keep(number, word)
-        return number
 
 
 def main() -> int:
