@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from cf_lang.ontology import actions as act
 from cf_lang.ontology.actions import pass_speed
+from cf_sim_backend import kick_plan
 from cf_sim_backend.embedded.physics import tackle_failure
 from cf_sim_backend.perception import to_own_frame
 from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, move_allowed, norm_deg
@@ -59,15 +60,12 @@ def _go(world: World, me: SimPlayer, x: float, y: float, power: float) -> Comman
 
 def kick_rate(world: World, me: SimPlayer) -> float:
     """The ball's acceleration per unit of kick power with the ball where it is now (rcssserver's formula)."""
-    prm, b = world.params, world.ball
-    dir_diff = abs(norm_deg(direction_deg(me.x, me.y, b.x, b.y) - me.body))
-    gap = max(0.0, distance(me.x, me.y, b.x, b.y) - prm.player_size - prm.ball_size)
-    return prm.kick_power_rate * max(0.1, 1.0 - 0.25 * dir_diff / 180.0 - 0.25 * gap / prm.kickable_margin)
+    return kick_plan.rate_at(world.params, me.body, world.ball.x - me.x, world.ball.y - me.y)
 
 
 def most_accel(world: World, rate: float) -> float:
     """The most acceleration one kick gives the ball at this kick rate."""
-    return min(100.0 * rate, world.params.ball_accel_max)
+    return kick_plan.most_accel(world.params, rate)
 
 
 def kick_towards(world: World, me: SimPlayer, x: float, y: float, speed: float | None) -> Command:
@@ -103,36 +101,29 @@ def kick_reach(world: World, me: SimPlayer, x: float, y: float, rate: float | No
     b = world.ball
     most = most_accel(world, kick_rate(world, me) if rate is None else rate)
     angle = math.radians(direction_deg(b.x, b.y, x, y))
-    ux, uy = math.cos(angle), math.sin(angle)
-    along = ux * b.vx + uy * b.vy
-    room = along * along - (b.vx * b.vx + b.vy * b.vy) + most * most
-    if room < 0.0:
+    return kick_plan.reach_along(world.params, math.cos(angle), math.sin(angle), b.vx, b.vy, most)
+
+
+PRESSED = 2.5  # m: an opponent this close to the ball may take it during a first touch
+LAY_CLEAR = 3.0  # m from where an opponent will be: a first touch lays the ball no nearer (his dash and tackle)
+FIRST_TOUCHES = 2  # touches at most before a pass or shot's kick: each is a cycle the receiver and the opponents move
+TOUCH_GAIN = 0.2  # m/cycle: a first touch must make the kick at least this much faster to be worth its cycle
+
+
+def first_touch(world: World, me: SimPlayer, x: float, y: float, wanted: float) -> Command | None:
+    """The touch after which the next kick sends the ball towards (x, y) fastest (up to ``wanted``),
+    laying it no nearer than LAY_CLEAR to where an opponent will be; None if an opponent is within
+    PRESSED of the ball or it would not gain TOUCH_GAIN over kicking now (:mod:`kick_plan`)."""
+    if pressed(world, me):
         return None
-    return min(along + math.sqrt(room), world.params.ball_speed_max)
-
-
-COLLECT_AHEAD = 0.6  # m in front of the body: where a touch gives the ball nearly the most speed
-PRESSED = 2.5  # m: an opponent this close to the ball may take it during a collecting touch
-LAID = 0.3  # m: a ball this near where a collecting touch would lay it is laid already
-
-
-def collect_kick(world: World, me: SimPlayer) -> Command | None:
-    """A touch that lays the ball COLLECT_AHEAD in front of where I will be next cycle, if one kick can
-    and the ball is not within LAID of there already.
-
-    From there the next kick is nearly as strong as any: a ball at the edge of the kickable area or
-    behind the body leaves at two thirds of the speed or less.
-    """
-    b, rate = world.ball, kick_rate(world, me)
-    body = math.radians(me.body)
-    tx = me.x + me.vx + COLLECT_AHEAD * math.cos(body)
-    ty = me.y + me.vy + COLLECT_AHEAD * math.sin(body)
-    ax, ay = tx - b.x - b.vx, ty - b.y - b.vy
-    if math.hypot(ax, ay) > most_accel(world, rate) or math.hypot(ax, ay) < LAID:
-        # (laid already: another touch would not make the kick any faster, and the player on the
-        # rcssserver touched a ball lying there three times running while an opponent came in)
+    b = world.ball
+    now = kick_reach(world, me, x, y) or 0.0
+    kicker = kick_plan.Kicker(me.x, me.y, me.vx, me.vy, me.body, b.x, b.y, b.vx, b.vy)
+    opponents = [(p.x + p.vx, p.y + p.vy) for p in world.players.values() if p.side is not me.side]
+    touch = kick_plan.best_touch(world.params, kicker, (x, y), wanted, opponents, LAY_CLEAR)
+    if touch is None or touch.then < min(wanted, now + TOUCH_GAIN):
         return None
-    return _kick_for(me, ax, ay, rate)
+    return _kick_for(me, touch.ax, touch.ay, kick_rate(world, me))
 
 
 def pressed(world: World, me: SimPlayer) -> bool:
@@ -326,7 +317,7 @@ class KickTo(Skill):
         super().__init__()
         self.name, self.x, self.y, self.power, self.approach = name, x, y, power, approach
         self.kicked = False
-        self.collected = False  # one collecting touch at most: the second kick goes whatever it gives
+        self.touches = 0  # first touches made (FIRST_TOUCHES at most): then the kick goes whatever it gives
         self.set_up = 0  # cycles spent stepping up to the ball of our set piece
 
     def _step(self, world: World, me: SimPlayer) -> Step:
@@ -346,18 +337,18 @@ class KickTo(Skill):
             # This touch would send it off too slowly. At our set piece the ball lies still and a
             # second touch before anyone else's is a free kick fault: step up to it instead (a
             # kick-off taker 1 m from the ball sent his passes off at 2.1 m/cycle, not 2.7, and
-            # they were cut out). In play: lay it in front first, unless someone would take it.
+            # they were cut out). In play: a first touch lays it where the kick is strong.
             if world.mode != "play_on":
                 if self.set_up < SET_UP_STEPS:
                     self.set_up += 1
                     command = set_up(world, me)
                     if command is not None:
                         return Step([command])
-            elif not self.collected:
-                self.collected = True
-                collect = None if pressed(world, me) else collect_kick(world, me)
-                if collect is not None:
-                    return Step([collect])
+            elif self.touches < FIRST_TOUCHES:
+                touch = first_touch(world, me, self.x, self.y, wanted)
+                if touch is not None:
+                    self.touches += 1
+                    return Step([touch])
         self.kicked = True
         return Step([kick_towards(world, me, self.x, self.y, speed)])
 
