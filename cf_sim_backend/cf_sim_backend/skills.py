@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from cf_lang.ontology import actions as act
 from cf_lang.ontology.actions import pass_speed
-from cf_sim_backend import kick_plan
+from cf_sim_backend import intercept, kick_plan
 from cf_sim_backend.embedded.physics import tackle_failure
 from cf_sim_backend.perception import to_own_frame
 from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, move_allowed, norm_deg
@@ -233,27 +233,23 @@ def run_distances(world: World, me: SimPlayer, dashes: int, speed: float | None 
     return out
 
 
-def intercept_point(world: World, me: SimPlayer) -> tuple[float, float, int]:
-    """Where and in how many cycles the player can first have the ball, rolling as it does.
+def _meeting(world: World, me: SimPlayer) -> intercept.Meeting | None:
+    b = world.ball
+    runner = intercept.Runner(me.x, me.y, me.vx, me.vy, me.body)
+    reach = INTERCEPT_REACH * world.params.kickable_distance
+    return intercept.meeting(world.params, runner, (b.x, b.y, b.vx, b.vy), reach, INTERCEPT_HORIZON)
 
-    Each cycle n of the ball's path is tried: the point is his if full dashes (after a turn when
-    it is off his body) cover the way there less his reach within n cycles. A ball he never
-    catches up with is met where it stops.
-    """
+
+def intercept_point(world: World, me: SimPlayer) -> tuple[float, float, int]:
+    """Where and in how many cycles the player can first have the ball, rolling as it does
+    (:mod:`intercept`: dashing at an angle off the body or after a turn, whichever is sooner).
+    A ball he never catches up with is met where it stops."""
+    met = _meeting(world, me)
+    if met is not None:
+        return met.x, met.y, met.cycles
     prm, b = world.params, world.ball
-    reach = INTERCEPT_REACH * prm.kickable_distance
-    runs = run_distances(world, me, INTERCEPT_HORIZON)
-    x, y, vx, vy = b.x, b.y, b.vx, b.vy
-    for n in range(1, INTERCEPT_HORIZON + 1):
-        x, y, vx, vy = x + vx, y + vy, vx * prm.ball_decay, vy * prm.ball_decay
-        way = distance(me.x, me.y, x, y) - reach
-        if way <= 0.0:
-            return x, y, n
-        off = abs(norm_deg(direction_deg(me.x, me.y, x, y) - me.body))
-        turns = 0 if off <= AIM_TOLERANCE or (way <= SIDE_STEP and off <= 90.0) else 1
-        if way <= runs[n - turns]:
-            return x, y, n
-    return x, y, INTERCEPT_HORIZON
+    rolled = (1.0 - prm.ball_decay**INTERCEPT_HORIZON) / (1.0 - prm.ball_decay)
+    return b.x + b.vx * rolled, b.y + b.vy * rolled, INTERCEPT_HORIZON
 
 
 def _chase_ball(world: World, me: SimPlayer) -> Step:
@@ -261,12 +257,17 @@ def _chase_ball(world: World, me: SimPlayer) -> Step:
     b = world.ball
     if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
         return Step([], "done")
-    x, y, _ = intercept_point(world, me)
-    if distance(me.x, me.y, x, y) <= 0.5:
+    met = _meeting(world, me)
+    if met is None:
+        x, y, _ = intercept_point(world, me)
+        return Step([_go(world, me, x, y, 100.0)])
+    if not met.command or distance(me.x, me.y, met.x, met.y) <= 0.5:
         # At the meeting point before the ball: a dash would carry him past it.
         off = norm_deg(direction_deg(me.x, me.y, b.x, b.y) - me.body)
         return Step([("turn", _turn_moment(world, me, off))] if abs(off) > AIM_TOLERANCE else [])
-    return Step([_go(world, me, x, y, 100.0)])
+    if met.command[0] == "turn":
+        return Step([("turn", _turn_moment(world, me, met.command[1]))])
+    return Step([("dash", met.command[1], round(met.command[2], 1))])
 
 
 class Intercept(Skill):
