@@ -114,3 +114,22 @@ def test_after_his_pass_in_their_half_the_passer_runs_on_onside_for_the_ball_bac
     assert "pass and go" not in decide(st, 9, 11, {10: 3}, passes=[Announced(9, long, ball, 99)]).why
     # A defender stays where he is.
     assert "pass and go" not in decide(state(me, (17.0, 9.0), players, number=3), 3, 11, {}, passes=passes).why
+
+
+def test_a_pass_seen_rolling_near_its_meeting_is_got_by_the_intercept_skill_a_far_one_by_a_run():
+    start, me = (-20.0, 0.0), (-13.0, 1.5)
+    passes = [Announced(4, act.Pass(target=at(0.0, 0.0)), start, 97)]
+    seen = (-15.0, 0.0)
+    st = state(me, seen, [mate(4, -20.5, 0.0)], number=6)
+    rolling_ball = st.model_copy(
+        update={"ball": Ball(positioning=at(*seen), velocity=Velocity(vx=20.0, vy=0.0), age=0)}
+    )
+    near = decide(rolling_ball, 6, 11, {4: 90, 5: 3}, passes=passes)  # (5 claims it sooner: my own chase is long)
+    assert near.method == "intercept" and "meet the pass: get it" in near.why
+    # Not yet seen rolling (the ball's velocity unknown): the run to where it is met, as before.
+    unseen = st.model_copy(update={"ball": Ball(positioning=at(*start), age=0)})
+    assert decide(unseen, 6, 11, {4: 0}, passes=passes).method == "moveTo"
+    # Rolling, but the meeting is far off: run to the spot.
+    far = rolling_ball.model_copy(update={"me": rolling_ball.me.model_copy(update={"positioning": at(-2.0, 6.0)})})
+    got = decide(far, 6, 11, {4: 90, 5: 3}, passes=passes)
+    assert got.method == "moveTo" and "meet the pass (" in got.why
