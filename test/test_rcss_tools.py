@@ -19,8 +19,8 @@ from rcss_options import best_gain, bin_of, in_behind, line_lanes, line_table, m
 from rcss_options import table as options_table
 from rcss_picture import picture
 from rcss_picture import table as picture_table
+from rcss_reach_fit import LOSSES, lead, loss_table, set_off, set_off_table
 from rcss_reach_fit import kicks as reach_kicks
-from rcss_reach_fit import lead, set_off, set_off_table
 from rcss_reach_fit import table as reach_table
 from rcss_series import again, match_stats, read_rcg, top_speeds
 from rcss_set_pieces import kind_of, set_pieces
@@ -262,6 +262,32 @@ def test_the_reach_model_is_replayed_on_the_game_logs_truth_of_each_kick(tmp_pat
     assert lead(first, 3) < lead(first, 1)  # a team-mate who sets off later is there later
     text = reach_table([first, second], [1])
     assert "| 1 cycle | 0/1 (0%) | - | - | - | 1/1 (100%) |" in text
+    assert first.lost == "" and second.lost == LOSSES[3]  # nobody of ours came within 2 m of it
+    assert f"| {LOSSES[3]} | 1 | 100% |" in loss_table([first, second])
+
+
+@pytest.mark.parametrize(("mate_y", "their_touch", "how"), [(1.5, 9, 2), (0.5, 9, 1), (9.0, 2, 0)])
+def test_a_lost_kick_says_how_near_a_team_mate_came_or_that_an_opponent_kicked_it_at_once(
+    tmp_path, mate_y, their_touch, how
+):
+    """CF 9 kicks 2 m/cycle along y = 0 past CF 10 (standing ``mate_y`` off the line at x = 16);
+    PYRUS 3 kicks it in frame ``their_touch`` (2: in the same cycle as CF 9)."""
+    where = {("l", 9): (10.0, 0.0), ("l", 10): (16.0, mate_y), ("r", 3): (30.0, 0.0), ("r", 1): (50.0, 0.0)}
+    kicks_of = {key: 0 for key in where}
+    ball, velocity = 10.5, 0.0
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 14):
+        if t == 2:
+            kicks_of[("l", 9)] += 1
+            velocity = 2.0
+        elif t > 2:
+            ball, velocity = ball + velocity, velocity * 0.94
+        if t == their_touch:
+            kicks_of[("r", 3)] += 1
+        lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players_at(where, kicks_of)})")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    (kick,) = reach_kicks(tmp_path, "CF")
+    assert not kick.kept and kick.lost == LOSSES[how]
 
 
 def test_a_receiver_sets_off_in_the_first_cycle_he_moves_towards_the_balls_path(tmp_path):

@@ -12,7 +12,11 @@ HORIZON). The outcome is the next kick by anyone but the kicker: a team-mate's k
 One row per REACT; a model that foresees well keeps few balls at a lead of 0 or less and nearly
 all at 2 or more. This is how docs/performance.md judges the model the passes are chosen with.
 
-A second table says how soon receivers set off, for both teams: for each kick in play (either
+A second table says how each lost kick was lost: an opponent kicked the ball in the same cycle
+(both at it: the server adds the two kicks), or, by the nearest any team-mate came to the ball
+before the opponents' kick, a team-mate had it in reach first, came within NEAR metres, or none did.
+
+A third table says how soon receivers set off, for both teams: for each kick in play (either
 side's) the receiver is the kicker's team-mate the model (react 1) puts first on the true path,
 if he has SET_OFF_RUN metres or more to run to where it puts him; he sets off in the first cycle
 he moves SET_OFF_STEP or more towards that point (never within SET_OFF_WITHIN cycles: "-").
@@ -35,6 +39,7 @@ from cf_decision import reach
 from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
 
 MIN_SPEED = 1.2  # m/cycle: slower touches are a dribble's pushes, not kicks to anybody
+KICKABLE = 1.085  # m: rcssserver's kickable distance of the default player type
 HORIZON = reach.HORIZON  # a lead is at most this many cycles either way
 SET_OFF_RUN = 2.0  # m: a receiver nearer than this to the ball's path need not run
 SET_OFF_STEP = 0.4  # m in one cycle towards where he meets the ball: he is on his way
@@ -49,6 +54,7 @@ class Kick:
     mates: tuple[tuple[float, float], ...]  # the kicker left out
     opponents: tuple[tuple[tuple[float, float], bool], ...]  # (position, goalkeeper)
     kept: bool
+    lost: str = ""  # how a lost kick was lost: one of LOSSES
 
 
 def launched(frames: list, i: int) -> tuple[tuple[float, float], tuple[float, float]] | None:
@@ -71,15 +77,51 @@ def kicks(match: Path, team: str = "CF") -> list[Kick]:
         if start is None:
             continue
         later = itertools.islice(events, k + 1, None)
-        nxt = next(((s2, n2) for _, s2, n2, _, _ in later if (s2, n2) != (s, number)), None)
+        nxt = next(((i2, s2, n2) for i2, s2, n2, _, _ in later if (s2, n2) != (s, number)), None)
         if nxt is None:
             continue
         ball, velocity = start
         players = frames[i][3]
         mates = tuple((p[2], p[3]) for p in players if p[0] == side and p[1] != number)
         opponents = tuple(((p[2], p[3]), bool(p[6] & GOALIE)) for p in players if p[0] != side)
-        out.append(Kick(ball, velocity, mates, opponents, nxt[0] == side))
+        kept = nxt[1] == side
+        lost = "" if kept else loss(frames, i, nxt[0], side, number)
+        out.append(Kick(ball, velocity, mates, opponents, kept, lost))
     return out
+
+
+LOSSES = (
+    "an opponent kicked it in the same cycle",  # both at the ball: the server adds the two kicks
+    "a team-mate had it in reach first",
+    "a team-mate came within 2 m, not in reach",
+    "no team-mate came within 2 m",
+)
+NEAR = 2.0  # m: a team-mate this near the rolling ball, not in reach, nearly had it
+
+
+def loss(frames: list, i: int, lost_at: int, side: str, kicker: int) -> str:
+    """How the ball kicked in frame ``i`` was lost to the opponents' kick in frame ``lost_at``: the
+    nearest any team-mate (the kicker left out) came to it meanwhile."""
+    if lost_at <= i:
+        return LOSSES[0]
+    nearest = min(
+        (
+            math.dist((p[2], p[3]), frames[j][2][:2])
+            for j in range(i + 1, lost_at + 1)
+            for p in frames[j][3]
+            if p[0] == side and p[1] != kicker
+        ),
+        default=math.inf,
+    )
+    return LOSSES[1] if nearest <= KICKABLE else LOSSES[2] if nearest <= NEAR else LOSSES[3]
+
+
+def loss_table(all_kicks: list[Kick]) -> str:
+    lost = Counter(k.lost for k in all_kicks if not k.kept)
+    n = sum(lost.values())
+    lines = ["| our lost kicks | kicks | share |", "|---|---:|---:|"]
+    lines += [f"| {why} | {lost[why]} | {lost[why] / n:.0%} |" for why in LOSSES if n]
+    return "\n".join(lines)
 
 
 def lead(kick: Kick, react: int) -> int:
@@ -178,6 +220,8 @@ def main() -> int:
         f"{sum(k.kept for k in all_kicks)} kept"
     )
     print(table(all_kicks, [int(v) for v in args.react.split(",")]))
+    print("\nhow the lost ones were lost (the nearest a team-mate came to the ball before the opponents' kick)")
+    print(loss_table(all_kicks))
     print(f"\ncycles after the kick before the receiver set off ({SET_OFF_STEP:g} m or more towards the ball's path)")
     print(set_off_table(lags, args.team))
     return 0
