@@ -266,47 +266,48 @@ def test_the_reach_model_is_replayed_on_the_game_logs_truth_of_each_kick(tmp_pat
     assert f"| {LOSSES[3]} | 1 | 100% |" in loss_table([first, second])
 
 
-@pytest.mark.parametrize(("mate_y", "their_touch", "how"), [(1.5, 9, 2), (0.5, 9, 1), (9.0, 2, 0)])
-def test_a_lost_kick_says_how_near_a_team_mate_came_or_that_an_opponent_kicked_it_at_once(
-    tmp_path, mate_y, their_touch, how
-):
-    """CF 9 kicks 2 m/cycle along y = 0 past CF 10 (standing ``mate_y`` off the line at x = 16);
-    PYRUS 3 kicks it in frame ``their_touch`` (2: in the same cycle as CF 9)."""
-    where = {("l", 9): (10.0, 0.0), ("l", 10): (16.0, mate_y), ("r", 3): (30.0, 0.0), ("r", 1): (50.0, 0.0)}
+def pass_along_x(tmp_path: Path, where: dict, cycles: int, step=lambda t, where, kicks_of: None) -> None:
+    """Write a game log: CF 9 kicks the ball from x = 10.5 at 2 m/cycle along y = 0 in cycle 2;
+    ``step(t, where, kicks_of)`` moves players and counts their kicks each cycle."""
     kicks_of = {key: 0 for key in where}
     ball, velocity = 10.5, 0.0
     lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
-    for t in range(1, 14):
+    for t in range(1, cycles):
         if t == 2:
             kicks_of[("l", 9)] += 1
             velocity = 2.0
         elif t > 2:
             ball, velocity = ball + velocity, velocity * 0.94
-        if t == their_touch:
-            kicks_of[("r", 3)] += 1
+        step(t, where, kicks_of)
         lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players_at(where, kicks_of)})")
     (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+
+
+@pytest.mark.parametrize(("mate_y", "their_touch", "how"), [(1.5, 9, 2), (0.5, 9, 1), (9.0, 2, 0)])
+def test_a_lost_kick_says_how_near_a_team_mate_came_or_that_an_opponent_kicked_it_at_once(
+    tmp_path, mate_y, their_touch, how
+):
+    """CF 9's kick rolls past CF 10 (standing ``mate_y`` off its line at x = 16); PYRUS 3 kicks it
+    in frame ``their_touch`` (2: in the same cycle as CF 9)."""
+
+    def their_kick(t, where, kicks_of):
+        kicks_of[("r", 3)] += t == their_touch
+
+    where = {("l", 9): (10.0, 0.0), ("l", 10): (16.0, mate_y), ("r", 3): (30.0, 0.0), ("r", 1): (50.0, 0.0)}
+    pass_along_x(tmp_path, where, 14, their_kick)
     (kick,) = reach_kicks(tmp_path, "CF")
     assert not kick.kept and kick.lost == LOSSES[how]
 
 
 def test_a_receiver_sets_off_in_the_first_cycle_he_moves_towards_the_balls_path(tmp_path):
     """CF 9 passes 2 m/cycle along y = 0; CF 10, 6 m off the line, stands 2 cycles, then runs to it."""
-    where = {("l", 9): (10.0, 0.0), ("l", 10): (22.0, 6.0), ("r", 3): (45.0, 10.0)}
-    kicks_of = {key: 0 for key in where}
-    ball, velocity = 10.5, 0.0
-    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
-    for t in range(1, 16):
-        if t == 2:
-            kicks_of[("l", 9)] += 1
-            velocity = 2.0
-        elif t > 2:
-            ball, velocity = ball + velocity, velocity * 0.94
+
+    def run_in(t, where, kicks_of):
         if t >= 5:
             x, y = where[("l", 10)]
             where[("l", 10)] = (x, max(0.5, y - 0.8))
-        lines.append(f"(show {t} ((b) {ball:.4f} 0 0 0) {players_at(where, kicks_of)})")
-    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+
+    pass_along_x(tmp_path, {("l", 9): (10.0, 0.0), ("l", 10): (22.0, 6.0), ("r", 3): (45.0, 10.0)}, 16, run_in)
     lags = set_off(tmp_path, "CF")
     assert lags["us"] == {3: 1} and not lags["them"]
     text = set_off_table(lags, "CF")
