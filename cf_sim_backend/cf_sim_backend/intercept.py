@@ -66,7 +66,8 @@ def turn_reach(prm: Params, speed: float) -> float:
 
 def cycles_to(prm: Params, r: Runner, tx: float, ty: float, reach: float, limit: int) -> tuple[int, tuple] | None:
     """How soon the player can be within ``reach`` of (tx, ty), and the first command of the quicker
-    way: dashing straight at it at whatever angle off the body, or one turn to face it, then dashes."""
+    way: dashing straight at it at whatever angle off the body, or turning to face it (up to
+    MAX_TURNS turns), then dashing ahead. ``(0, ())``: within reach now."""
     if math.hypot(tx - r.x, ty - r.y) <= reach:
         return 0, ()
     angle = norm_deg(math.degrees(math.atan2(ty - r.y, tx - r.x)) - r.body)

@@ -5,10 +5,8 @@ rcssserver's kick adds to the ball's velocity an acceleration of at most
 and from its edge (``rate_at``), capped at ``ball_accel_max``. A ball at the edge of
 the kickable area or beside the body leaves at two thirds of the speed or less,
 which made half of our passes slow (session 42). A base team's answer, followed
-here: one touch first that lays the ball where the second kick is strong, and
-that already sends it the way the pass goes, so the second kick adds to a
-rolling ball (two touches reach ``ball_speed_max``, one touch at best
-``ball_accel_max``).
+here: one touch first that lays the ball where the second kick is strong,
+counting the speed the touch leaves it with, which the second kick adds to.
 """
 
 from __future__ import annotations

@@ -245,11 +245,14 @@ def intercept_point(world: World, me: SimPlayer) -> tuple[float, float, int]:
     (:mod:`intercept`: dashing at an angle off the body or after a turn, whichever is sooner).
     A ball he never catches up with is met where it stops."""
     met = _meeting(world, me)
-    if met is not None:
-        return met.x, met.y, met.cycles
+    return (met.x, met.y, met.cycles) if met is not None else (*_rolled_to(world), INTERCEPT_HORIZON)
+
+
+def _rolled_to(world: World) -> tuple[float, float]:
+    """Where the ball is after INTERCEPT_HORIZON cycles of rolling."""
     prm, b = world.params, world.ball
     rolled = (1.0 - prm.ball_decay**INTERCEPT_HORIZON) / (1.0 - prm.ball_decay)
-    return b.x + b.vx * rolled, b.y + b.vy * rolled, INTERCEPT_HORIZON
+    return b.x + b.vx * rolled, b.y + b.vy * rolled
 
 
 def _chase_ball(world: World, me: SimPlayer) -> Step:
@@ -259,8 +262,7 @@ def _chase_ball(world: World, me: SimPlayer) -> Step:
         return Step([], "done")
     met = _meeting(world, me)
     if met is None:
-        x, y, _ = intercept_point(world, me)
-        return Step([_go(world, me, x, y, 100.0)])
+        return Step([_go(world, me, *_rolled_to(world), 100.0)])
     if not met.command or distance(me.x, me.y, met.x, met.y) <= 0.5:
         # At the meeting point before the ball: a dash would carry him past it.
         off = norm_deg(direction_deg(me.x, me.y, b.x, b.y) - me.body)
