@@ -37,9 +37,10 @@ from rcss_series import kick_events
 
 from cf_decision import reach
 from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
+from cf_sim_backend.world import Params
 
 MIN_SPEED = 1.2  # m/cycle: slower touches are a dribble's pushes, not kicks to anybody
-KICKABLE = 1.085  # m: rcssserver's kickable distance of the default player type
+KICKABLE = Params().kickable_distance  # m: rcssserver's, of the default player type
 HORIZON = reach.HORIZON  # a lead is at most this many cycles either way
 SET_OFF_RUN = 2.0  # m: a receiver nearer than this to the ball's path need not run
 SET_OFF_STEP = 0.4  # m in one cycle towards where he meets the ball: he is on his way

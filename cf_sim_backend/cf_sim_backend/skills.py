@@ -110,14 +110,14 @@ FIRST_TOUCHES = 2  # touches at most before a pass or shot's kick: each is a cyc
 TOUCH_GAIN = 0.2  # m/cycle: a first touch must make the kick at least this much faster to be worth its cycle
 
 
-def first_touch(world: World, me: SimPlayer, x: float, y: float, wanted: float) -> Command | None:
+def first_touch(world: World, me: SimPlayer, x: float, y: float, wanted: float, now: float) -> Command | None:
     """The touch after which the next kick sends the ball towards (x, y) fastest (up to ``wanted``),
     laying it no nearer than LAY_CLEAR to where an opponent will be; None if an opponent is within
-    PRESSED of the ball or it would not gain TOUCH_GAIN over kicking now (:mod:`kick_plan`)."""
+    PRESSED of the ball or it would not gain TOUCH_GAIN over ``now``, the fastest a kick now gives
+    (:mod:`kick_plan`)."""
     if pressed(world, me):
         return None
     b = world.ball
-    now = kick_reach(world, me, x, y) or 0.0
     kicker = kick_plan.Kicker(me.x, me.y, me.vx, me.vy, me.body, b.x, b.y, b.vx, b.vy)
     opponents = [(p.x + p.vx, p.y + p.vy) for p in world.players.values() if p.side is not me.side]
     touch = kick_plan.best_touch(world.params, kicker, (x, y), wanted, opponents, LAY_CLEAR)
@@ -336,7 +336,8 @@ class KickTo(Skill):
         else:  # a share of the fastest one kick gives a still ball (100: as fast as this touch can)
             speed = None if self.power >= 100.0 else self.power / 100.0 * world.params.ball_accel_max
         wanted = world.params.ball_accel_max if speed is None else speed
-        if (kick_reach(world, me, self.x, self.y) or 0.0) < 0.9 * wanted:
+        now = kick_reach(world, me, self.x, self.y) or 0.0
+        if now < 0.9 * wanted:
             # This touch would send it off too slowly. At our set piece the ball lies still and a
             # second touch before anyone else's is a free kick fault: step up to it instead (a
             # kick-off taker 1 m from the ball sent his passes off at 2.1 m/cycle, not 2.7, and
@@ -348,7 +349,7 @@ class KickTo(Skill):
                     if command is not None:
                         return Step([command])
             elif self.touches < FIRST_TOUCHES:
-                touch = first_touch(world, me, self.x, self.y, wanted)
+                touch = first_touch(world, me, self.x, self.y, wanted, now)
                 if touch is not None:
                     self.touches += 1
                     return Step([touch])
