@@ -4,10 +4,12 @@ Plays seeded matches on the simulator core, in-process and without ROS, but thro
 pieces the nodes use: each cf_decision player perceives with `perception.observe` (view cone,
 noise), decides with `cf_decision.policy.decide` and acts through `skills.skill_for`; team-mates
 share their times to the ball, the passes they ask for and what they see (``shared.py``) as the
-decision components do over ACL (a pass is heard in the next cycle, a sighting in the same).
+decision components do over ACL (a pass is heard in the next cycle, a sighting in the same);
+with ``--talk say`` they only say their passes through the simulator's say and hear, and judge
+who goes for the ball from where they see each other (``cf_decision/talk.py``).
 
     python bench/eval_team.py [--matches 10] [--players 11] [--half-cycles 1500] [--opponent chasers|ours]
-                              [--out DIR] [--player-types 18]
+                              [--out DIR] [--player-types 18] [--talk framework|say]
 
 Each match's seed also draws rcssserver 19's heterogeneous player types (``player_types.py``),
 which both sides get by our coach's rule; ``--player-types 1`` plays with the default type only.
@@ -31,6 +33,7 @@ from cf_decision.receive import Announced, to_announce
 from cf_decision.requests import choice_text, same_request
 from cf_decision.set_piece import KICKING, SetPieceTaker
 from cf_decision.shared import merged, to_tell, told_to
+from cf_decision.talk import heard_pass, pass_word, seen_claims
 from cf_decision.touch import LastTouch
 from cf_decision.without_ball import NEVER, state_eta
 from cf_lang.ontology import Team
@@ -47,8 +50,9 @@ from cf_sim_backend.world import Params, Side
 class PolicyTeam:
     """Drives one side with the cf_decision policy, one skill per player at a time."""
 
-    def __init__(self, sim: Simulator, side: Side, seed: int, log_dir: Path | None = None):
+    def __init__(self, sim: Simulator, side: Side, seed: int, log_dir: Path | None = None, talk: str = "framework"):
         self.sim, self.side = sim, side
+        self.says = talk == "say"
         self.rng = random.Random(seed)
         self.current: dict[int, tuple[tuple, object]] = {}
         self.takers: dict[int, SetPieceTaker] = {}
@@ -75,10 +79,12 @@ class PolicyTeam:
             eta = state_eta(st)
             if eta is not None:
                 claims[n] = eta if may_touch[n] else NEVER
-        words = {n: to_tell(st) for n, st in states.items()}
-        near = told_to(claims)  # (the team-mates a word goes to)
+        words = {n: None if self.says else to_tell(st) for n, st in states.items()}
+        near = set() if self.says else told_to(claims)  # (the team-mates a word goes to)
         asked = []
         for n, st in states.items():
+            if self.says:
+                self._read_says(n, st)
             if n in near:
                 st, _ = merged(st, [word for m, word in words.items() if m != n and word is not None])
             me = w.player(self.side, n)
@@ -87,10 +93,13 @@ class PolicyTeam:
             touch.seen(st)
             mate_touched = touch.team is Team.OUR
             heard = list(self.passes.get(n, {}).values())
-            decision = decide(st, n, self.size, claims, may_touch[n], heard, mate_touched)
+            told = seen_claims(st, n) if self.says else claims
+            decision = decide(st, n, self.size, told, may_touch[n], heard, mate_touched)
             self.takers[n].decided(st, decision)
             if to_announce(st, decision):
                 asked.append((n, decision.action))
+                if self.says:
+                    self.sim.command(self.side, n, "say", pass_word(decision.action))
             key = (decision.method, decision.action)
             current = self.current.get(n)
             if current is None or not same_request(current[0], key):
@@ -110,11 +119,24 @@ class PolicyTeam:
                 self.current.pop(n, None)
         for passer, action in asked:
             for n, st in states.items():
+                if self.says and n != passer:
+                    continue  # heard through the say, next cycle
                 if st.ball and st.ball.positioning:  # the passer keeps his own, as the decision node does
                     ball = (st.ball.positioning.x, st.ball.positioning.y)
                     self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, st.time + 1)
                     if n != passer:
                         self.touches.setdefault(n, LastTouch()).played_by_mate()
+
+    def _read_says(self, n: int, st) -> None:
+        """The passes player ``n`` heard said (``--talk say``), as the decision component reads them."""
+        for heard in st.heard:
+            action = heard_pass(heard.message)
+            if action is not None and st.ball and st.ball.positioning:
+                ball = (st.ball.positioning.x, st.ball.positioning.y)
+                self.passes.setdefault(n, {})[heard.player_number] = Announced(
+                    heard.player_number, action, ball, heard.time
+                )
+                self.touches.setdefault(n, LastTouch()).played_by_mate()
 
     def write_logs(self) -> None:
         """Each player's decision log, where ``tools/rcss_match.py --out`` puts our players' logs."""
@@ -126,7 +148,13 @@ class PolicyTeam:
 
 
 def play(
-    seed: int, players: int, half_cycles: int, opponent: str = "chasers", out: Path | None = None, types: int = 18
+    seed: int,
+    players: int,
+    half_cycles: int,
+    opponent: str = "chasers",
+    out: Path | None = None,
+    types: int = 18,
+    talk: str = "framework",
 ) -> dict:
     sim = Simulator(
         Params(half_cycles=half_cycles, auto_kick_off_cycles=5),
@@ -136,9 +164,11 @@ def play(
         player_types=types,
     )
     match = out / f"match-{seed}" if out else None
-    ours = PolicyTeam(sim, Side.LEFT, seed, match / "logs-CF" if match else None)
+    ours = PolicyTeam(sim, Side.LEFT, seed, match / "logs-CF" if match else None, talk)
     theirs = (
-        PolicyTeam(sim, Side.RIGHT, seed + 1000, match / "logs-CFB" if match else None) if opponent == "ours" else None
+        PolicyTeam(sim, Side.RIGHT, seed + 1000, match / "logs-CFB" if match else None, talk)
+        if opponent == "ours"
+        else None
     )
     log = MatchLog(match / "match.jsonl", sim, 0.1) if match else None
     while not sim.finished:
@@ -177,13 +207,19 @@ def main() -> None:
     parser.add_argument(
         "--player-types", type=int, default=18, help="heterogeneous types as rcssserver 19's (1: all default)"
     )
+    parser.add_argument(
+        "--talk", choices=("framework", "say"), default="framework", help="say: team-mates talk only by say and hear"
+    )
     args = parser.parse_args()
     rows = [
-        play(seed, args.players, args.half_cycles, args.opponent, args.out, args.player_types)
+        play(seed, args.players, args.half_cycles, args.opponent, args.out, args.player_types, args.talk)
         for seed in range(args.matches)
     ]
     them = "chasers" if args.opponent == "chasers" else "cf_decision"
-    print(f"{args.players} v {args.players}, {2 * args.half_cycles} cycles a match, cf_decision (left) v {them}\n")
+    talk = "" if args.talk == "framework" else ", talk by say"
+    print(
+        f"{args.players} v {args.players}, {2 * args.half_cycles} cycles a match{talk}, cf_decision (left) v {them}\n"
+    )
     print(f"| seed | cf_decision | {them} | result | our shots | our kicks | our possession |")
     print("|---:|---:|---:|---|---:|---:|---:|")
     for r in rows:

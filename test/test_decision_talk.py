@@ -11,10 +11,11 @@ from __future__ import annotations
 import math
 
 from cf_commag.agent import Agent
+from cf_decision.talk import heard_pass
 from cf_lang import Exec, parse_expr
 from cf_lang.acl import AclMessage, AgentId, Performative
 from cf_lang.expr import unparse
-from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, WorldState
+from cf_lang.ontology import AbsolutePositioning, Ball, Game, Heard, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 from cf_sim_backend.services import PerceptionService
 from cf_system import executable, start_commag
@@ -231,3 +232,78 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
     play(lambda t: world(t, mine, rolling_on, free), going, "blue 7 to run on after its pass")
     logged = [line for line in procs.log("decision").splitlines() if "moveTo: pass and go" in line]
     assert logged and " | passes 4>7@" in logged[-1] and " 7>" in logged[-1], logged[-1:]
+
+
+def test_with_talk_say_a_pass_goes_in_a_say_through_the_action_and_a_heard_one_is_met(procs, probe, tag, tmp_path):
+    """``talk:=say`` (a competition's rules): blue 7 tells its team-mates nothing over the framework;
+    it asks its action provider to say its pass, and meets a pass it hears of in its perception."""
+    team = f"blue{tag}"
+    start_commag(procs, tag, tmp_path)
+    argv = [executable("cf_decision", "decision"), "--ros-args", "-p", f"commag:=/commag_{tag}", "-p", f"team:={team}"]
+    procs.start([*argv, "-p", "number:=7", "-p", "lease:=2.0", "-p", "talk:=say"], "decision")
+    common = {"team": team, "commag": f"/commag_{tag}", "lease": 2.0}
+    perception = PerceptionService(
+        Agent(probe.node, name=f"perception_{tag}", service_class="WorldModel", player_number=7, **common), "not yet"
+    )
+    requests = []
+
+    def on_request(msg, responder):
+        requests.append(parse_expr(msg.content))
+        responder.agree()
+
+    action = Agent(probe.node, name=f"action_{tag}", service_class="Action", player_number=7, **common)
+    action.serve("fipa-request", on_request)
+    told = []
+    mates = [
+        Agent(
+            probe.node,
+            name=f"mate{n}_{tag}",
+            service_class="PlayerDecision",
+            player_number=n,
+            on_message=told.append,
+            **common,
+        )
+        for n in (4, 9)
+    ]
+    probe.wait_kind(f"{team}_7_decision", "registered", timeout=60)
+    probe.spin_until(lambda: all(m.registered for m in mates), timeout=30, what="the team-mates' registration")
+    clock = iter(range(1, 10**6))
+
+    def play(state_of, done, what):
+        def cycle():
+            perception.publish(state_of(next(clock)))
+            probe.spin_for(0.1)
+            return done()
+
+        return probe.spin_until(cycle, timeout=60.0, what=what)
+
+    # 1. The ball at its feet, mate 9 free 20 m up: blue 7 passes, and says the pass first.
+    mine, free = (0.0, 0.0), {4: (-30.0, 0.0), 9: (20.0, 5.0)}
+
+    def said_and_passed():
+        says = [r for r in requests if isinstance(r, Exec) and r.method == "say"]
+        passes = [r for r in requests if isinstance(r, Exec) and r.method == "pass"]
+        return (says, passes) if says and passes else None
+
+    says, passes = play(lambda t: world(t, mine, (0.5, 0.0), free), said_and_passed, "blue 7 to say and pass")
+    assert requests.index(says[0]) < requests.index(passes[0])  # said first: in synch mode the pass ends the cycle
+    assert heard_pass(says[0].action.message) == passes[0].action, (says[0], passes[0])
+
+    # 2. Mate 4 has the ball; blue 7 waits (mate 4 is nearer it, as blue 7 sees), until it hears mate
+    # 4 say "p7": it runs to meet the ball on its way.
+    here, ball, team_mates = (-20.0, -10.0), (-30.0, 0.0), {4: (-30.5, 0.0), 9: (10.0, 0.0)}
+    since = len(requests)
+    play(lambda t: world(t, here, ball, team_mates), lambda: len(requests) > since, "blue 7 to go on playing")
+    assert not any(r.method == "intercept" for r in requests[since:] if isinstance(r, Exec))
+
+    def with_word(t):
+        state = world(t, here, ball, team_mates)
+        return state.model_copy(update={"heard": (Heard(player_number=4, message="p7", time=t),)})
+
+    def meeting():
+        moves = [r.action for r in requests[since:] if isinstance(r, Exec) and r.method == "moveTo"]
+        return next((m for m in moves if off_line((m.target.x, m.target.y), ball, here) < 1.0), None)
+
+    meet = play(with_word, meeting, "blue 7 to run to meet the pass it heard of")
+    assert meet.target.x > here[0] - 10.0 and meet.speed == 100.0
+    assert told == []  # no word over the framework: no claims, no sightings, no passes

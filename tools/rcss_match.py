@@ -2,7 +2,7 @@
 
     python tools/rcss_match.py --server $RCSSSERVER [--players 11] [--opponents 0] [--cycles 300]
                                [--realtime] [--layout player|process] [--out DIR] [--no-isolate] [--game-log]
-                               [--kick-off referee|trainer] [--no-coach] [--log-requests]
+                               [--kick-off referee|trainer] [--no-coach] [--log-requests] [--talk framework|say]
 
 It starts the server (synch mode unless --realtime; trainer with referee; logs off; its own
 config dir), our team with ``rcss_team`` (the ComMAg, the adapters, the decisions), optionally
@@ -189,6 +189,7 @@ def run(args: argparse.Namespace) -> dict:
             argv = [team_exe, "--team", name, "--port", str(port), "--players", str(players), "--layout", args.layout]
             argv += ["--no-coach"] if args.no_coach else []
             argv += ["--log-requests"] if args.log_requests and i == 0 else []
+            argv += ["--talk", args.talk]
             argv += ["--log-dir", str(out / f"logs-{name}"), "--stats-dir", str(out / "stats")]
             if i > 0:
                 argv += ["--no-commag"]  # one ComMAg serves both teams
@@ -341,6 +342,9 @@ def main() -> int:
         "default type; how series were played before session 25)",
     )
     ap.add_argument("--no-coach", action="store_true", help="our team without its coach (rcss_team --no-coach)")
+    ap.add_argument(
+        "--talk", choices=("framework", "say"), default="framework", help="how our players talk (rcss_team --talk)"
+    )
     ap.add_argument(
         "--log-requests", action="store_true", help="our decisions log every new request (rcss_team --log-requests)"
     )

@@ -3,7 +3,7 @@
     python tools/rcss_series.py --server $RCSSSERVER --opponent PYRUS \\
         --opponent-cmd "bash -c 'cd /path/to/Pyrus2D && ./start.sh -t {team} --disable-file-log'" \\
         [--matches 5] [--cycles 2000] [--realtime] [--seed 0] [--out DIR] [--kick-off referee|trainer] [--no-coach]
-        [--log-requests]
+        [--log-requests] [--talk framework|say]
 
 Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode unless
 --realtime; two halves; our 11 players against the opponent's, started with its own
@@ -258,6 +258,7 @@ def play(args: argparse.Namespace, n: int) -> dict:
         argv.append("--no-coach")
     if args.log_requests:
         argv.append("--log-requests")
+    argv += ["--talk", args.talk]
     t0 = time.monotonic()
     done = subprocess.run(argv, capture_output=True, text=True, timeout=args.timeout + 300)
     try:
@@ -369,6 +370,12 @@ def main() -> int:
     )
     ap.add_argument("--no-coach", action="store_true", help="our team without its coach")
     ap.add_argument("--log-requests", action="store_true", help="our decisions log every new request")
+    ap.add_argument(
+        "--talk",
+        choices=("framework", "say"),
+        default="framework",
+        help="say: our players talk only through the server's say and hear, as a competition's rules demand",
+    )
     args = ap.parse_args()
     if args.again:
         return again(Path(args.again), args.team)

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import sys
 import time
+from typing import Literal
 
 from pydantic import Field
 from rclpy.node import Node
@@ -42,6 +43,7 @@ from .requests import ActionRequests, choice_text, request_text
 from .set_piece import KICKING, SetPieceTaker
 from .shared import Heard, merged, to_tell, told_to
 from .situation import Decision, xy
+from .talk import heard_pass, pass_word, seen_claims
 from .touch import LastTouch
 from .without_ball import NEVER, state_eta
 
@@ -53,6 +55,11 @@ class DecisionParams(ComponentParams):
     standby: bool = Field(False, description="act only when no other decision component of this player is alive")
     log_requests: bool = Field(
         False, description="log every new request with what it was chosen on (me, ball, claims, passes heard)"
+    )
+    talk: Literal["framework", "say"] = Field(
+        "framework",
+        description="framework: tell team-mates' decisions times to the ball, passes and sightings (ACL);"
+        " say: only the pass, in a say through the back-end, as a competition's rules allow (talk.py)",
     )
 
 
@@ -76,6 +83,7 @@ class DecisionNode(GuardedNode, Node):
         p = DecisionParams.declare_and_read(self)
         self.team, self.number, self.team_size, self.standby = p.team, p.number, p.team_size, p.standby
         self.log_requests = p.log_requests
+        self.says = p.talk == "say"  # talk only through the back-end's say (talk.py)
         name = _agent_name(p.model_dump())
         self.agent = Agent(
             self,
@@ -92,6 +100,7 @@ class DecisionNode(GuardedNode, Node):
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
         self.passes: dict[int, Announced] = {}  # team-mate number (or mine) -> the last pass he announced
         self.heard = Heard()  # what team-mates told they saw (shared.py)
+        self.said_seen: list[tuple[int, int, str]] = []  # the latest says read (talk say): each is read once
         self.last_ball: tuple[float, float] | None = None  # where I believed the ball last
         self.perception: str | None = None
         self.subscription = None
@@ -146,22 +155,31 @@ class DecisionNode(GuardedNode, Node):
         if not isinstance(state, WorldState) or not self._acting():
             return
         self.heard.perceived()
-        word = to_tell(state)  # (my own sighting: not an echo of what team-mates told)
+        word = None if self.says else to_tell(state)  # (my own sighting: not an echo of what team-mates told)
         state, taken = merged(state, self.heard.recent())
         self.requests.stats.from_mates += taken
         if self.last_time is not None and state.time > self.last_time + 1:
             self.requests.stats.missed += state.time - self.last_time - 1
         self.last_time = state.time
         self.last_ball = xy(state.ball.positioning) if state.ball else None
-        now = time.monotonic()
-        claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
+        if self.says:
+            self._read_says(state)
+            claims = seen_claims(state, self.number)
+        else:
+            now = time.monotonic()
+            claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
         may_touch = self.taker.may_touch(state)
         self.touch.seen(state)
         mate_touched = self.touch.team is Team.OUR
         passes = list(self.passes.values())
         decision = decide(state, self.number, self.team_size, claims, may_touch, passes, mate_touched)
         self.taker.decided(state, decision)
-        self._announce(state, may_touch, word, claims)
+        announce = to_announce(state, decision)  # every cycle until it is kicked: the kick is due the next
+        if self.says:
+            if announce:  # before the request: in synch mode the request's start ends our cycle
+                self._say(pass_word(decision.action))
+        else:
+            self._announce(state, may_touch, word, claims)
         if self.requests.wants(decision.method, decision.action):
             if decision.method in KICKING:
                 # One line per new way of playing the ball: what a match analysis needs, a few a minute.
@@ -170,8 +188,9 @@ class DecisionNode(GuardedNode, Node):
             if self.log_requests:
                 self.get_logger().info(request_text(state, decision, claims, passes, self._exec(decision)))
             self._request(decision)
-        if to_announce(state, decision):  # every cycle until it is kicked: the kick is due the next
-            self._tell_mates(self._exec(decision))
+        if announce:
+            if not self.says:
+                self._tell_mates(self._exec(decision))
             # Kept as team-mates keep it: the passer runs on after it (support.go_spot).
             self.passes[self.number] = Announced(self.number, decision.action, self.last_ball, state.time + 1)
 
@@ -183,6 +202,26 @@ class DecisionNode(GuardedNode, Node):
         future = self.agent.request(provider, content, timeout=3.0)
         self.requests.sent(decision.method, decision.action, future)
         future.add_done_callback(guard(self._on_answer, self.get_logger(), "the answer to a request"))
+
+    def _say(self, text: str) -> None:
+        """Ask the action provider to say ``text`` (beside the request in force; answers are not awaited)."""
+        provider = self.agent.provider("Action", team=self.team, player_number=self.number)
+        if provider is not None:
+            key = f":playerNumber {self.number} :whichTeam our"
+            self.agent.request(provider, f'(exec Player say {key} :message "{text}")', timeout=3.0)
+
+    def _read_says(self, state: WorldState) -> None:
+        """Take the passes team-mates said (talk ``say``): as a pass told over the framework, heard a
+        cycle later, so its kick is taken to be in the cycle it was heard."""
+        for heard in state.heard:
+            action = heard_pass(heard.message)
+            said = (heard.player_number, heard.time, heard.message)
+            if action is None or heard.player_number == self.number or said in self.said_seen:
+                continue
+            self.said_seen = [*self.said_seen[-7:], said]
+            if self.last_ball is not None:
+                self.passes[heard.player_number] = Announced(heard.player_number, action, self.last_ball, heard.time)
+                self.touch.played_by_mate()
 
     def _exec(self, decision: Decision) -> str:
         """The ``(exec Player <method> ...)`` text of ``decision`` for my player."""

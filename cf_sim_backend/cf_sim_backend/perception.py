@@ -23,6 +23,7 @@ from cf_lang.ontology import (
     AbsolutePositioning,
     Ball,
     Game,
+    Heard,
     Player,
     PlayMode,
     RelativePositioning,
@@ -149,7 +150,19 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
         score_opp=world.score[side.other],
         half=world.half,
     )
-    return WorldState(time=world.time, me=myself, ball=ball, players=tuple(others), game=game)
+    return WorldState(time=world.time, me=myself, ball=ball, players=tuple(others), game=game, heard=heard(world, me))
+
+
+def heard(world: World, me: SimPlayer) -> tuple[Heard, ...]:
+    """The team-mate's say that ``me`` hears this cycle: as on rcssserver (hear capacity 1 a cycle
+    from team-mates), the first said within ``audio_cut_dist``; an opponent's is not understood."""
+    for side, number, text in world.said:
+        speaker = world.players.get((side, number))
+        if speaker is None or speaker is me or side is not me.side:
+            continue
+        if distance(me.x, me.y, speaker.x, speaker.y) <= world.params.audio_cut_dist:
+            return (Heard(player_number=number, message=text, time=world.time),)
+    return ()
 
 
 def _clip(value: float, limit: float) -> float:

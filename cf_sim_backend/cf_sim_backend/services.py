@@ -105,6 +105,10 @@ class ActionService:
 
     ``me()`` gives our number and side; ``world()`` the world a skill starts in, or None before
     the back-end has started (the request is then refused with ``not_yet``).
+
+    ``say`` (service class Communication) is not a body action: it goes out beside the skill in
+    force, which it neither replaces nor ends, through ``on_say(text)`` (the back-end sends it with
+    this cycle's commands), and is done at once.
     """
 
     def __init__(
@@ -114,10 +118,12 @@ class ActionService:
         world: Callable[[], World | None],
         not_yet: str,
         on_start: Callable[[Skill], None] | None = None,
+        on_say: Callable[[str], None] | None = None,
     ):
         self._me, self._world = me, world
         self._not_yet = not_yet
         self._on_start = on_start
+        self._on_say = on_say
         self.skill: Skill | None = None
         self.responder: Responder | None = None
         agent.serve("fipa-request", self._on_request)
@@ -137,6 +143,13 @@ class ActionService:
             skill = skill_for(expr.method, expr.action, side, world, world.player(side, number))
         except SkillError as exc:
             raise Refuse(str(exc)) from None
+        if expr.method == "say":
+            if self._on_say is None:
+                raise Refuse("this back-end cannot say")
+            self._on_say(expr.action.message)
+            responder.agree()
+            responder.inform("(done say :cycles 0)")
+            return
         if self.responder is not None and self.responder.open:
             self.responder.failure("replaced by a newer request")
         responder.agree()

@@ -17,7 +17,16 @@ from cf_lang.ontology.actions import pass_speed
 from cf_sim_backend import intercept, kick_plan
 from cf_sim_backend.embedded.physics import tackle_failure
 from cf_sim_backend.perception import to_own_frame
-from cf_sim_backend.world import Side, SimPlayer, World, direction_deg, distance, move_allowed, norm_deg
+from cf_sim_backend.world import (
+    Side,
+    SimPlayer,
+    World,
+    direction_deg,
+    distance,
+    move_allowed,
+    norm_deg,
+    say_error,
+)
 
 Command = tuple  # ("dash", power, dir) | ("turn", moment) | ("kick", power, dir) | ...
 TIMEOUT_CYCLES = 300
@@ -592,7 +601,10 @@ def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> S
             raise SkillError("only the goalkeeper can catch")
         return Once(("catch", math.degrees(action.direction)), "catch")
     if isinstance(action, act.Say):
-        return Once(("say",), "say")
+        error = say_error(action.message, prm)
+        if error is not None:
+            raise SkillError(error)
+        return Once(("say", action.message), "say")
     if isinstance(action, act.Move):
         if not move_allowed(world.mode):
             raise SkillError("move is allowed only before a kick-off")

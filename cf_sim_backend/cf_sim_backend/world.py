@@ -85,6 +85,8 @@ class Params:
     goal_pause_cycles: int = 20
     auto_kick_off_cycles: int = 50
     set_piece_timeout: int = 100
+    say_msg_size: int = 10  # characters a say may carry (rcssserver's say_msg_size)
+    audio_cut_dist: float = 50.0  # m: a say is heard this far off at most
 
     @property
     def top_speed(self) -> float:
@@ -171,6 +173,7 @@ class World:
     kick_off_side: Side = Side.LEFT
     types: tuple[Params, ...] = ()  # the heterogeneous types' parameters by id (none: all of ``params``)
     types_seed: int = 0  # the seed they were drawn with (player_types.hetero_types)
+    said: tuple[tuple[Side, int, str], ...] = ()  # the says of the cycle just played: heard in this one
 
     def player(self, side: Side, number: int) -> SimPlayer:
         return self.players[(side, number)]
@@ -183,6 +186,19 @@ class World:
         """This world with ``p``'s parameters as its ``params`` (the same players and ball, not copies):
         what the skills read, as the rcssserver adapter's belief gives them its own player's type."""
         return dataclasses.replace(self, params=self.params_of(p))
+
+
+SAY_CHARACTERS = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 ().+*/?<>_-")
+
+
+def say_error(text: str, params: Params) -> str | None:
+    """Why rcssserver would not carry ``text`` as a say (too long, a character it refuses), or None."""
+    if not 1 <= len(text) <= params.say_msg_size:
+        return f"a say carries 1 to {params.say_msg_size} characters, not {len(text)}"
+    bad = sorted(set(text) - SAY_CHARACTERS)
+    if bad:
+        return f"a say carries letters, digits and ' ().+*/?<>_-' only, not {''.join(bad)!r}"
+    return None
 
 
 def norm_deg(angle: float) -> float:
@@ -262,4 +278,5 @@ def world_from_snapshot(snap: dict, params: Params | None = None) -> World:
         )
         w.players[p.key] = p
     w.half = int(snap.get("half", 1))
+    w.said = tuple((Side(side), int(number), str(text)) for side, number, text in snap.get("said", ()))
     return w

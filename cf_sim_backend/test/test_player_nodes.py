@@ -10,8 +10,10 @@ from __future__ import annotations
 import pytest
 from rclpy.parameter import Parameter
 
+from cf_commag.client import Agent
 from cf_commag.commag_node import CommagNode
 from cf_decision.decision_node import DecisionNode
+from cf_lang import parse_expr
 from cf_sim_backend.embedded.action_node import ActionNode
 from cf_sim_backend.embedded.perception_node import PerceptionNode
 from cf_sim_backend.embedded.sim_node import SimNode
@@ -79,3 +81,56 @@ def test_invalid_parameters_are_refused_with_the_parameter_named(ros):
         DecisionNode(context=ros.context, parameter_overrides=params(number=12))
     with pytest.raises(ValueError, match="side"):
         PerceptionNode(context=ros.context, parameter_overrides=params(side="x"))
+
+
+def test_a_say_asked_for_in_acl_is_heard_by_a_team_mate_and_the_running_action_goes_on(ros, unique, tmp_path):
+    """``(exec Player say ...)`` over the wire: heard in a team-mate's perceived WorldState (``:heard``),
+    beside a ``moveTo`` in force, which it neither replaces nor ends; a say rcssserver would not carry
+    is refused with why."""
+    commag = f"/commag_{unique}"
+    node = ros.add(
+        CommagNode(
+            node_name=f"commag_{unique}",
+            context=ros.context,
+            parameter_overrides=params(autostart=False, persistence_path=str(tmp_path / "registry.json")),
+        )
+    )
+    node.trigger_configure()
+    node.trigger_activate()
+    team = f"blue{unique}"
+    sim_name = f"sim_{unique}"
+    ros.add(
+        SimNode(
+            context=ros.context,
+            parameter_overrides=params(
+                sim=sim_name, commag=commag, relaunch=False, left_size=3, right_size=0, cycle_period=0.05
+            ),
+        )
+    )
+    common = {"commag": commag, "team": team, "relaunch": False, "sim": sim_name, "side": "l"}
+    speaker = ros.add(ActionNode(context=ros.context, parameter_overrides=params(number=2, **common)))
+    listener = ros.add(PerceptionNode(context=ros.context, parameter_overrides=params(number=3, **common)))
+    client = Agent(ros.node(f"client_{unique}"), name=f"client_{unique}", service_class="Coaching", commag=commag)
+    ros.spin_until(lambda: speaker.agent.registered and listener.agent.registered and client.registered)
+
+    heard = []
+
+    def on_state(msg):
+        state = parse_expr(msg.content)
+        heard.extend((h.player_number, h.message) for h in state.heard)
+
+    client.request(
+        listener.agent.me.name, "(val WorldState)", protocol="fipa-subscribe", timeout=60.0, on_update=on_state
+    )
+    key = ":playerNumber 2 :whichTeam our"
+    moving = client.request(
+        speaker.agent.me.name, f"(exec Player moveTo {key} :target (AbsolutePositioning :x -40 :y 30))"
+    )
+    said = client.request(speaker.agent.me.name, f'(exec Player say {key} :message "t0725310")')
+    ros.spin_until(said.done, what="the say's answer")
+    assert said.result().ok and said.result().content == "(done say :cycles 0)"
+    ros.spin_until(lambda: (2, "t0725310") in heard, timeout=30, what="team-mate 3 to hear it")
+    assert not moving.done() and speaker.action.active  # the run goes on
+    refused = client.request(speaker.agent.me.name, f'(exec Player say {key} :message "far too long")')
+    ros.spin_until(refused.done, what="the long say's answer")
+    assert refused.result().state == "refused" and "a say carries 1 to 10 characters" in refused.result().content

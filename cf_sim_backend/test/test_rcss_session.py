@@ -20,7 +20,7 @@ from cf_sim_backend.rcss.belief import PLAYER_MEMORY, SIM_MODES, UNSURE, Belief,
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse, well_formed
 from cf_sim_backend.rcss.session import PlayerSession, rcss_command
 from cf_sim_backend.rcss.trace import belief_errors, read_trace
-from cf_sim_backend.skills import Intercept, KickTo, MoveTo, Skill, skill_for
+from cf_sim_backend.skills import Intercept, KickTo, MoveTo, Skill, SkillError, skill_for
 from cf_sim_backend.world import Side, norm_deg
 
 DATA = Path(__file__).parent / "data" / "rcss"
@@ -767,3 +767,35 @@ def test_going_for_a_rolling_ball_every_other_see_looks_upfield_until_it_is_clos
     b.time = b.see_time = b.ball.seen = 46
     look(session)
     assert abs(b.me.head - 90.0) <= 15.0
+
+
+def test_a_team_mates_say_is_heard_into_the_world_state_and_others_are_not():
+    """rcssserver 19: ``(hear T DIR our N "text")`` from a team-mate; ``(hear T our N)`` over the capacity;
+    an opponent's ``(hear T DIR opp "text")`` is not ours to read."""
+    b = _belief()
+    b.update(parse("(sense_body 20 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    for line in ('(hear 20 -30 our 9 "t0725310")', "(hear 20 our 4)", '(hear 20 12 opp "ha")', '(hear 20 self "p9")'):
+        b.update(parse(line))
+    state = world_state(b)
+    assert [(h.player_number, h.message, h.time) for h in state.heard] == [(9, "t0725310", 20)]
+    b.update(parse("(sense_body 22 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    assert world_state(b).heard == ()  # two cycles on: no longer news
+
+
+def test_a_say_goes_out_with_the_next_cycles_commands_beside_the_skill_in_force():
+    session = PlayerSession("CF")
+    session.receive(b"(init l 7 before_kick_off)\0")
+    session.receive(b"(sense_body 0 (view_mode high normal) (speed 0 0) (head_angle 0))\0")
+    session.say("p9")
+    first = session.act().commands
+    assert '(say "p9")' in first and all(well_formed(c) for c in first)
+    assert not any(c.startswith("(say") for c in session.act().commands)  # said once
+
+
+@pytest.mark.parametrize("text", ["", "a say too long", 'q"uote', "caf\u00e9"])
+def test_a_say_rcssserver_would_not_carry_is_refused_with_why(text):
+    b = _belief()
+    b.update(parse("(sense_body 1 (view_mode high normal) (speed 0 0) (head_angle 0))"))
+    world = b.world()
+    with pytest.raises(SkillError, match="a say carries"):
+        skill_for("say", act.Say.model_construct(message=text), Side.LEFT, world, world.player(Side.LEFT, 7))

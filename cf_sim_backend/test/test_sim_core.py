@@ -345,3 +345,34 @@ def test_the_simulator_counts_a_corner_aimed_kick_as_a_shot():
     sim.command(Side.LEFT, 9, "kick", 100, aim)
     sim.step()
     assert sim.stats["shots"][Side.LEFT] == 1
+
+
+def test_a_say_is_heard_next_cycle_by_team_mates_within_50_m_one_a_cycle():
+    """As rcssserver: heard within audio_cut_dist, one team-mate's message a cycle (the first said), not
+    by the speaker; an opponent's say is not understood."""
+    sim = sim_with(
+        (Side.LEFT, 1, 0.0, 0.0, 0.0),
+        (Side.LEFT, 2, 40.0, 0.0, 0.0),  # 40 m from 1
+        (Side.LEFT, 3, -45.0, 20.0, 0.0),  # 49.2 m from 1, 88 m from 2
+        (Side.RIGHT, 1, 5.0, 0.0, 180.0),
+    )
+    sim.command(Side.LEFT, 1, "say", "p2")
+    sim.command(Side.LEFT, 3, "say", "p1")
+    sim.command(Side.RIGHT, 1, "say", "hello")
+    sim.step()
+
+    def heard(side, number):
+        state = observe(sim.world, side, number, random.Random(1), noise=0.0)
+        return [(h.player_number, h.message, h.time) for h in state.heard]
+
+    t = sim.world.time
+    assert heard(Side.LEFT, 2) == [(1, "p2", t)]  # 3 is beyond 50 m
+    assert heard(Side.LEFT, 3) == [(1, "p2", t)]
+    assert heard(Side.LEFT, 1) == [(3, "p1", t)]  # not his own
+    assert heard(Side.RIGHT, 1) == []
+    snap = sim.snapshot()
+    assert snap["said"][0] == ["l", 1, "p2"]
+    sim.step()
+    assert heard(Side.LEFT, 2) == []  # said once, heard once
+    with pytest.raises(CommandError, match="a say carries"):
+        sim.command(Side.LEFT, 1, "say", "eleven char")

@@ -129,8 +129,17 @@ class Game(Concept):
     half: int = Field(default=1, ge=1, le=4)
 
 
+class Heard(Concept):
+    """A team-mate's message this player heard (the back-end's ``say``: on rcssserver at most
+    10 characters, heard within 50 m, one team-mate's message a cycle)."""
+
+    player_number: int = player_number_field()
+    message: str = Field(min_length=1, max_length=64)
+    time: int = Field(ge=0, description="the game time it was heard")
+
+
 class WorldState(Concept):
-    """What one player perceives in one cycle: itself, the ball, the others, the game."""
+    """What one player perceives in one cycle: itself, the ball, the others, the game, what it heard."""
 
     time: int = Field(ge=0)
     me: Player | None = None
@@ -138,3 +147,4 @@ class WorldState(Concept):
     players: tuple[Player, ...] = ()
     game: Game | None = None
     offside_lines: tuple[OffsideLine, ...] = ()
+    heard: tuple[Heard, ...] = ()

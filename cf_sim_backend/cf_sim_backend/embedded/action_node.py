@@ -23,8 +23,16 @@ class ActionNode(PlayerComponentNode):
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
         self.action = ActionService(
-            self.agent, lambda: (self.number, self.side), self._my_world, "the simulator has not started"
+            self.agent,
+            lambda: (self.number, self.side),
+            self._my_world,
+            "the simulator has not started",
+            on_say=self._say,
         )
+
+    def _say(self, text: str) -> None:
+        """Sent with this player's next commands: team-mates within audio_cut_dist hear it the cycle after."""
+        self.feed.command({"side": self.side.value, "number": self.number, "cmd": "say", "args": [text]})
 
     def _my_world(self) -> World | None:
         """The current world with my type's parameters: what the skills read (World.as_player)."""

@@ -7,7 +7,7 @@ import random
 from cf_sim_backend.embedded import physics, referee
 from cf_sim_backend.embedded.physics import CommandError
 from cf_sim_backend.player_types import PlayerType, choose_types, hetero_types
-from cf_sim_backend.world import COUNTED, Params, Side, SimBall, SimPlayer, World
+from cf_sim_backend.world import COUNTED, Params, Side, SimBall, SimPlayer, World, say_error
 
 _KICK, _DASH, _TURN, _CATCH, _MOVE, _TURN_NECK, _TACKLE = (
     COUNTED.index(n) for n in ("kick", "dash", "turn", "catch", "move", "turn_neck", "tackle")
@@ -56,6 +56,7 @@ class Simulator:
         self.rng = random.Random(seed)
         self._body: dict[tuple[Side, int], tuple[str, tuple[float, ...]]] = {}
         self._neck: dict[tuple[Side, int], float] = {}
+        self._said: dict[tuple[Side, int], str] = {}
         self._offside: dict[Side, set[int]] = {Side.LEFT: set(), Side.RIGHT: set()}
         self._stopped = 0
         # Who took the set piece that began this spell of play_on (and when it began), until another touch.
@@ -85,6 +86,13 @@ class Simulator:
         key = (Side(side), int(number))
         if key not in self.world.players:
             raise CommandError(f"no player {key[0].value} {key[1]}")
+        if name == "say":
+            # Not a body command: heard next cycle by the players within audio_cut_dist (observe).
+            error = say_error(str(args[0]), self.world.params) if len(args) == 1 else "say takes 1 argument"
+            if error is not None:
+                raise CommandError(error)
+            self._said[key] = str(args[0])
+            return
         if name not in _ARITY:
             raise CommandError(f"unknown command {name!r}")
         low, high = _ARITY[name]
@@ -109,6 +117,7 @@ class Simulator:
             return events
         body, self._body = self._body, {}
         neck, self._neck = self._neck, {}
+        w.said, self._said = tuple((side, number, text) for (side, number), text in self._said.items()), {}
         if w.mode in ("before_kick_off", "half_time"):
             self._moves_only(body)
             self._stopped += 1
@@ -261,4 +270,6 @@ class Simulator:
         }
         if w.types:
             snap["types"] = [w.types_seed, len(w.types)]
+        if w.said:
+            snap["said"] = [[side.value, number, text] for side, number, text in w.said]
         return snap

@@ -112,8 +112,6 @@ class SimNode(GuardedNode, Node):
             if int(c["done"]) == self.steps:
                 self.done_by.add((str(c["side"]), int(c["number"])))
             return
-        if c.get("cmd") == "say":
-            return
         self.sim.command(Side(c["side"]), int(c["number"]), str(c["cmd"]), *c.get("args", []))
 
     def _refuse(self, exc: Exception, text: str) -> None:

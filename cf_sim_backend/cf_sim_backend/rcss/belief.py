@@ -27,6 +27,7 @@ from cf_lang.ontology import (
     AbsolutePositioning,
     Ball,
     Game,
+    Heard,
     Player,
     RelativePositioning,
     Team,
@@ -46,6 +47,7 @@ PLAYER_SIGMA_GROWTH = 0.4
 MATCH_GATE = 1.5  # m: a sighting without a number is a known player believed this close to it, plus
 MATCH_RUN = 1.2  # m per cycle since he was last seen (a player's top speed, with noise), up to
 MATCH_MOST = 6.0  # m
+HEARD_KEPT = 4  # team-mates' says kept: (time heard, number, text)
 UNSURE = 50.0  # m: the sigma of a pose we know nothing about
 HALF_VIEW = {"narrow": 30.0, "normal": 60.0, "wide": 90.0}  # degrees each side of the head (synch see, v18+)
 QUANT = 0.05  # relative distance error of moving objects (the server rounds log(distance) to 0.1)
@@ -155,6 +157,7 @@ class Belief:
     sense_time: int = -1
     errors: list[str] = field(default_factory=list)
     referee_notes: list[str] = field(default_factory=list)  # the latest cards and pauses
+    heard: list[tuple[int, int, str]] = field(default_factory=list)  # team-mates' says: (time, number, text)
     # Turns, moves and kicks we sent, by command: (the server's counter of it when sent, the sense_body
     # cycle then, its effect). Applied once a sense_body's counter shows the server executed it.
     pending: dict[str, tuple[int | None, int, tuple[float, ...]]] = field(default_factory=dict)
@@ -205,6 +208,14 @@ class Belief:
     def _on_hear(self, msg: list) -> None:  # (hear T referee MODE) | (hear T self "..") | (hear T dir our 3 "..")
         if len(msg) >= 4 and str(msg[2]) == "referee":
             self._set_mode(str(msg[3]))
+        elif len(msg) >= 6 and str(msg[3]) == "our":
+            # A team-mate's say (protocol 8+); "(hear T our 3)" without the message: over the capacity.
+            try:
+                number, text = int(msg[4]), str(msg[5])
+            except (TypeError, ValueError):
+                return
+            if 1 <= number <= 11 and 1 <= len(text) <= 64:
+                self.heard = [*self.heard[-(HEARD_KEPT - 1) :], (int(msg[1]), number, text)]
 
     def _set_mode(self, mode: str) -> None:
         if mode.startswith(_NOT_A_MODE):  # a card, a pause: noted, the play mode stays
@@ -481,7 +492,7 @@ class Belief:
         """The server's and this player type's parameters, as the shared skills read them."""
         names = [f for f in Params.__dataclass_fields__ if f not in ("half_cycles", "halves")]
         values = {n: float(self.param(n, getattr(Params, n))) for n in names}
-        for n in ("goal_pause_cycles", "auto_kick_off_cycles", "set_piece_timeout"):
+        for n in ("goal_pause_cycles", "auto_kick_off_cycles", "set_piece_timeout", "say_msg_size"):
             values[n] = int(values[n])
         values["field_length"], values["field_width"] = FIELD.length, FIELD.width  # fixed in rcssserver
         values["goal_width"] = float(self.server.get("goal_width", FIELD.goal_width))
@@ -640,4 +651,6 @@ def world_state(belief: Belief) -> WorldState:
         score_opp=belief.score[side.other],
         half=min(belief.half, 4),
     )
-    return WorldState(time=t, me=myself, ball=ball, players=tuple(others), game=game)
+    # What team-mates said, heard this cycle or the last (the hear may come after the cycle's see).
+    heard = tuple(Heard(player_number=n, message=text, time=when) for when, n, text in belief.heard if when >= t - 1)
+    return WorldState(time=t, me=myself, ball=ball, players=tuple(others), game=game, heard=heard)

@@ -26,6 +26,7 @@ import sys
 import threading
 import time
 from collections import deque
+from typing import Literal
 
 from pydantic import Field
 from rclpy.node import Node
@@ -65,6 +66,9 @@ class RcssPlayerParams(ComponentParams):
     decision: bool = Field(False, description="host this player's decision component in this process too")
     team_size: int = Field(11, ge=1, le=11, description="players in the team (for the hosted decision's formation)")
     log_requests: bool = Field(False, description="the hosted decision logs every new request (its log_requests)")
+    talk: Literal["framework", "say"] = Field(
+        "framework", description="how the hosted decision talks to team-mates (its talk): say is the rules' way"
+    )
 
 
 class RcssPlayerNode(GuardedNode, Node):
@@ -203,7 +207,9 @@ class RcssPlayerNode(GuardedNode, Node):
         # is relaunched once (the action registration comes back with it).
         action = Agent(self, name=f"{team}_{n}_action", service_class="Action", **common)
         self.perception = PerceptionService(perception, "the server has not sent a cycle")
-        self.action = ActionService(action, lambda: (b.number, b.side or Side.LEFT), b.world, "", self._on_start)
+        self.action = ActionService(
+            action, lambda: (b.number, b.side or Side.LEFT), b.world, "", self._on_start, self.session.say
+        )
         self.agents.extend([perception, action])  # spin() holds this very list
         if self.p.decision:
             self._host_decision(host, launch)
@@ -217,6 +223,7 @@ class RcssPlayerNode(GuardedNode, Node):
         b = self.session.belief
         values = {"team": self.session.team, "number": b.number, "team_size": int(self.p.team_size)}
         values |= {"commag": self.p.commag, "lease": float(self.p.lease), "log_requests": bool(self.p.log_requests)}
+        values["talk"] = str(self.p.talk)
         node = DecisionNode(
             host=host,
             launch=launch,

@@ -30,7 +30,7 @@ AROUND_WITHIN = 2.0  # m: a ball this close is seen all round (visible_distance 
 NECK_LIMIT = 90.0  # rcssserver's maxneckang (and -minneckang)
 RECEIVE_SPEED = 0.8  # m/cycle: a ball rolling at least this fast goes where the belief says, unless touched
 RECEIVE_AHEAD = 3  # cycles: while a ball we go for is further off than this, every other see looks upfield
-_SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")
+_SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")  # (the ActionService refuses such a say first)
 
 
 def _n(value: float) -> str:
@@ -94,6 +94,7 @@ class PlayerSession:
     _necked: int = field(default=-1, init=False)  # the last cycle a turn_neck went out
     _viewed: int = field(default=-1, init=False)  # the last cycle a change_view went out
     view: str = "normal"  # the view width the next see comes with (asked for; the server confirms in sense_body)
+    to_say: str | None = None  # a say asked for, sent with the next cycle's commands (one a cycle)
 
     def __post_init__(self) -> None:
         self.belief = Belief(self.team, self.goalie)
@@ -244,8 +245,22 @@ class PlayerSession:
         """Carry out ``skill`` from the next :meth:`act` on (replacing the current one)."""
         self.skill = skill
 
+    def say(self, text: str) -> None:
+        """Say ``text`` with the next commands (a later say before then replaces it)."""
+        self.to_say = text
+
     def act(self) -> Acted:
-        """This cycle's commands: the current skill's step, at most one body command, once per cycle."""
+        """This cycle's commands: the current skill's step, at most one body command, once per cycle,
+        and the say asked for."""
+        acted = self._act()
+        if self.to_say is not None and self.ready and self.belief.mode != "time_over":
+            text = rcss_command(("say", self.to_say))
+            if text is not None:
+                acted.commands.append(text)
+            self.to_say = None
+        return acted
+
+    def _act(self) -> Acted:
         b = self.belief
         if not self.ready or b.mode == "time_over":
             return Acted()  # (after time over the server executes nothing: a command then is only noise)

@@ -67,6 +67,13 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         action="store_true",
         help="every decision logs each new request with what it was chosen on (docs/decision.md)",
     )
+    ap.add_argument(
+        "--talk",
+        choices=("framework", "say"),
+        default="framework",
+        help="how team-mates' decisions talk: framework (ACL over the framework) or say (the server's say and"
+        " hear only, as the rules of a competition demand; docs/decision.md)",
+    )
     ap.add_argument("--join-timeout", type=float, default=30.0, help="seconds each adapter may take to join")
     ap.add_argument(
         "--layout",
@@ -137,6 +144,7 @@ class TeamProcesses:
             if a.layout == "player":
                 argv += ["-p", "decision:=true", "-p", f"team_size:={a.players}"]
                 argv += ["-p", "log_requests:=true"] if a.log_requests else []
+                argv += ["-p", f"talk:={a.talk}"]
             argv += ["-r", f"__node:={safe_node_name(f'{a.team}_{n}_rcss_player')}"]  # the server gives n in order
             self.start(f"{a.team}_{n}_rcss_player", argv + stats)
             self.wait_for(f"{a.team}_{n}_perception", f"{a.team}_{n}_rcss_player", a.join_timeout)
@@ -148,6 +156,7 @@ class TeamProcesses:
             argv = [executable("cf_decision", "decision"), *ros, f"team:={a.team}", "-p", f"number:={n}"]
             argv += ["-p", f"team_size:={a.players}", "-p", f"commag:={a.commag}", "-p", f"lease:={a.lease}"]
             argv += ["-p", "log_requests:=true"] if a.log_requests else []
+            argv += ["-p", f"talk:={a.talk}"]
             # One after another too: eleven Python processes starting at once starve the running adapters.
             self.start(f"{a.team}_{n}_decision", argv)
             self.wait_for(f"{a.team}_{n}_decision", f"{a.team}_{n}_decision", a.join_timeout)
