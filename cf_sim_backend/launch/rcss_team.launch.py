@@ -3,7 +3,8 @@
 rcssserver gives shirt numbers in the order players connect, so the team is started by the
 ``rcss_team`` executable, which connects the 11 ``rcss_player`` adapters one after another
 (number 1 as goalkeeper), then starts the 11 unchanged ``cf_decision`` components, with the
-ComMAg in front. Ctrl-C stops all of them. Arguments: team, host, port, players, lease, log_dir.
+ComMAg in front. Ctrl-C stops all of them. Arguments: team, host, port, players, lease, log_dir,
+talk (``say``: within a competition's rules, docs/rcssserver.md).
 """
 
 from launch import LaunchDescription
@@ -18,6 +19,7 @@ ARGS = {
     "players": ("11", "how many players (1..11)"),
     "lease": ("3.0", "lease (s) of every component"),
     "log_dir": ("", "one log file per process (empty: a new temp dir)"),
+    "talk": ("framework", "framework, or say: team-mates talk only through the server's say and hear"),
 }
 
 
