@@ -306,4 +306,13 @@ def test_with_talk_say_a_pass_goes_in_a_say_through_the_action_and_a_heard_one_i
 
     meet = play(with_word, meeting, "blue 7 to run to meet the pass it heard of")
     assert meet.target.x > here[0] - 10.0 and meet.speed == 100.0
+
+    # 3. Mate 4 says "n" (our set piece's taker may not touch the ball again): blue 7 goes for it.
+    def not_mine(t):
+        state = world(t, here, ball, team_mates)
+        return state.model_copy(update={"heard": (Heard(player_number=4, message="n", time=t),)})
+
+    since = len(requests)
+    going = play(not_mine, lambda: any(r.method == "intercept" for r in requests[since:]), "blue 7 to go for the ball")
+    assert going
     assert told == []  # no word over the framework: no claims, no sightings, no passes

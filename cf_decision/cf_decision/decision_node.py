@@ -43,7 +43,7 @@ from .requests import ActionRequests, choice_text, request_text
 from .set_piece import KICKING, SetPieceTaker
 from .shared import Heard, merged, to_tell, told_to
 from .situation import Decision, xy
-from .talk import heard_pass, pass_word, seen_claims
+from .talk import NOT_ME, heard_pass, pass_word, seen_claims
 from .touch import LastTouch
 from .without_ball import NEVER, state_eta
 
@@ -101,6 +101,7 @@ class DecisionNode(GuardedNode, Node):
         self.passes: dict[int, Announced] = {}  # team-mate number (or mine) -> the last pass he announced
         self.heard = Heard()  # what team-mates told they saw (shared.py)
         self.said_seen: list[tuple[int, int, str]] = []  # the latest says read (talk say): each is read once
+        self.not_mine: dict[int, int] = {}  # team-mate -> when he last said the ball is not his (talk say)
         self.last_ball: tuple[float, float] | None = None  # where I believed the ball last
         self.perception: str | None = None
         self.subscription = None
@@ -164,7 +165,8 @@ class DecisionNode(GuardedNode, Node):
         self.last_ball = xy(state.ball.positioning) if state.ball else None
         if self.says:
             self._read_says(state)
-            claims = seen_claims(state, self.number)
+            recent = {n for n, t in self.not_mine.items() if state.time - t <= 2}
+            claims = seen_claims(state, self.number, frozenset(recent))
         else:
             now = time.monotonic()
             claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
@@ -178,6 +180,8 @@ class DecisionNode(GuardedNode, Node):
         if self.says:
             if announce:  # before the request: in synch mode the request's start ends our cycle
                 self._say(pass_word(decision.action))
+            elif not may_touch:
+                self._say(NOT_ME)  # (the framework's claim of NEVER)
         else:
             self._announce(state, may_touch, word, claims)
         if self.requests.wants(decision.method, decision.action):
@@ -214,6 +218,9 @@ class DecisionNode(GuardedNode, Node):
         """Take the passes team-mates said (talk ``say``): as a pass told over the framework, heard a
         cycle later, so its kick is taken to be in the cycle it was heard."""
         for heard in state.heard:
+            if heard.message == NOT_ME:
+                self.not_mine[heard.player_number] = heard.time
+                continue
             action = heard_pass(heard.message)
             said = (heard.player_number, heard.time, heard.message)
             if action is None or heard.player_number == self.number or said in self.said_seen:

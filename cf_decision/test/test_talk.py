@@ -7,8 +7,8 @@ import re
 
 import pytest
 
-from cf_decision.talk import heard_pass, pass_word, seen_claims
-from cf_decision.without_ball import choose_interceptor
+from cf_decision.talk import NOT_ME, heard_pass, pass_word, seen_claims
+from cf_decision.without_ball import NEVER, choose_interceptor
 from cf_lang.ontology import AbsolutePositioning, Ball, Player, Team, Velocity, WorldState
 from cf_lang.ontology import actions as act
 
@@ -80,3 +80,18 @@ def test_who_goes_for_the_ball_is_judged_from_where_team_mates_are_seen():
     assert claims[4] < claims[9]
     assert not choose_interceptor(7, 10, claims)  # mate 4 is nearer: he goes, I do not
     assert seen_claims(state.model_copy(update={"ball": None}), 7) == {}
+
+
+def test_a_team_mate_who_said_the_ball_is_not_his_is_never_the_one_to_go():
+    """Our set piece's taker may not touch the ball again until another player has: he says NOT_ME."""
+    near = Player(player_number=4, which_team=Team.OUR, positioning=AbsolutePositioning(x=9.0, y=0.0))
+    state = WorldState(
+        time=10,
+        me=Player(player_number=7, which_team=Team.OUR, positioning=AbsolutePositioning(x=0.0, y=0.0)),
+        ball=Ball(positioning=AbsolutePositioning(x=10.0, y=0.0)),
+        players=(near,),
+    )
+    assert not choose_interceptor(7, 10, seen_claims(state, 7))
+    claims = seen_claims(state, 7, frozenset({4}))
+    assert claims[4] == NEVER and choose_interceptor(7, 10, claims)
+    assert heard_pass(NOT_ME) is None
