@@ -37,6 +37,23 @@ def world(time, me, ball, mates):
     )
 
 
+def blue_7_services(probe, tag, common):
+    """Blue 7's perception (the test publishes its WorldStates) and action provider (it agrees to
+    every request and keeps it): the perception service and the list of requests."""
+    perception = PerceptionService(
+        Agent(probe.node, name=f"perception_{tag}", service_class="WorldModel", player_number=7, **common), "not yet"
+    )
+    requests = []
+
+    def on_request(msg, responder):
+        requests.append(parse_expr(msg.content))
+        responder.agree()
+
+    action = Agent(probe.node, name=f"action_{tag}", service_class="Action", player_number=7, **common)
+    action.serve("fipa-request", on_request)
+    return perception, requests
+
+
 def off_line(p, a, b):
     """Distance of point p from the segment a-b."""
     ax, ay, bx, by = *a, *b
@@ -65,17 +82,7 @@ def test_a_pass_is_told_to_team_mates_and_its_receiver_sets_off_before_the_ball_
         "decision",
     )
     common = {"team": team, "commag": f"/commag_{tag}", "lease": 2.0}
-    perception = PerceptionService(
-        Agent(probe.node, name=f"perception_{tag}", service_class="WorldModel", player_number=7, **common), "not yet"
-    )
-    requests = []
-
-    def on_request(msg, responder):
-        requests.append(parse_expr(msg.content))
-        responder.agree()
-
-    action = Agent(probe.node, name=f"action_{tag}", service_class="Action", player_number=7, **common)
-    action.serve("fipa-request", on_request)
+    perception, requests = blue_7_services(probe, tag, common)
     heard = {4: [], 9: []}
     mates = {
         n: Agent(
@@ -242,17 +249,7 @@ def test_with_talk_say_a_pass_goes_in_a_say_through_the_action_and_a_heard_one_i
     argv = [executable("cf_decision", "decision"), "--ros-args", "-p", f"commag:=/commag_{tag}", "-p", f"team:={team}"]
     procs.start([*argv, "-p", "number:=7", "-p", "lease:=2.0", "-p", "talk:=say"], "decision")
     common = {"team": team, "commag": f"/commag_{tag}", "lease": 2.0}
-    perception = PerceptionService(
-        Agent(probe.node, name=f"perception_{tag}", service_class="WorldModel", player_number=7, **common), "not yet"
-    )
-    requests = []
-
-    def on_request(msg, responder):
-        requests.append(parse_expr(msg.content))
-        responder.agree()
-
-    action = Agent(probe.node, name=f"action_{tag}", service_class="Action", player_number=7, **common)
-    action.serve("fipa-request", on_request)
+    perception, requests = blue_7_services(probe, tag, common)
     told = []
     mates = [
         Agent(

@@ -24,8 +24,8 @@ def params(**values):
     return [Parameter(k, value=v) for k, v in values.items()]
 
 
-def test_one_player_plays_through_its_three_components(ros, unique, tmp_path):
-    commag = f"/commag_{unique}"
+def start_commag(ros, unique, tmp_path) -> str:
+    """An active ComMAg in this process; its name."""
     node = ros.add(
         CommagNode(
             node_name=f"commag_{unique}",
@@ -35,6 +35,11 @@ def test_one_player_plays_through_its_three_components(ros, unique, tmp_path):
     )
     node.trigger_configure()
     node.trigger_activate()
+    return f"/commag_{unique}"
+
+
+def test_one_player_plays_through_its_three_components(ros, unique, tmp_path):
+    commag = start_commag(ros, unique, tmp_path)
     # In one test process there is no command that starts a component again: nothing to relaunch.
     common = {"commag": commag, "team": f"blue{unique}", "number": 2, "relaunch": False}
     sim = ros.add(
@@ -87,16 +92,7 @@ def test_a_say_asked_for_in_acl_is_heard_by_a_team_mate_and_the_running_action_g
     """``(exec Player say ...)`` over the wire: heard in a team-mate's perceived WorldState (``:heard``),
     beside a ``moveTo`` in force, which it neither replaces nor ends; a say rcssserver would not carry
     is refused with why."""
-    commag = f"/commag_{unique}"
-    node = ros.add(
-        CommagNode(
-            node_name=f"commag_{unique}",
-            context=ros.context,
-            parameter_overrides=params(autostart=False, persistence_path=str(tmp_path / "registry.json")),
-        )
-    )
-    node.trigger_configure()
-    node.trigger_activate()
+    commag = start_commag(ros, unique, tmp_path)
     team = f"blue{unique}"
     sim_name = f"sim_{unique}"
     ros.add(
