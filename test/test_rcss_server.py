@@ -50,7 +50,21 @@ def test_a_short_synch_match_ends_cleanly_and_our_players_kick_the_ball(tmp_path
 
 
 def test_two_instances_of_our_team_play_each_other_each_with_its_coach(tmp_path):
-    summary = play(tmp_path, "--players", "5", "--opponents", "5", "--cycles", "200", "--seed", "42", "--game-log")
+    # (talking over the framework, the other way than the default's)
+    argv = (
+        "--players",
+        "5",
+        "--opponents",
+        "5",
+        "--cycles",
+        "200",
+        "--seed",
+        "42",
+        "--game-log",
+        "--talk",
+        "framework",
+    )
+    summary = play(tmp_path, *argv)
     assert summary["team_exit_codes"] == [0, 0] and summary["server_exit_code"] == 0
     sides = {p["team"]: p["side"] for p in summary["players"]}
     assert sides == {"CF": "l", "CFB": "r"}
@@ -67,6 +81,23 @@ def test_two_instances_of_our_team_play_each_other_each_with_its_coach(tmp_path)
         # ... and the top speed its WorldState tells is that type's; it knows its team-mates' types.
         assert p["top_speed"] == pytest.approx(types[wanted[p["number"]]].speed * 10, abs=0.001), p
         assert {n: p["mate_types"].get(str(n), 0) for n in wanted} == wanted, p
+
+
+def test_team_mates_hear_each_others_passes_through_the_servers_say(tmp_path):
+    """The default talk is the rules' (--talk say): a pass is said through the server, and the
+    team-mates' decisions await it, as their request logs show (``passes P>R@T``)."""
+    summary = play(tmp_path, "--players", "11", "--cycles", "400", "--log-requests")
+    assert summary["team_exit_codes"] == [0] and summary["server_exit_code"] == 0
+    heard = set()
+    for log in (tmp_path / "match" / "logs-CF").glob("CF_*_rcss_player.log"):
+        me = int(log.name.split("_")[1])
+        for line in log.read_text(errors="replace").splitlines():
+            if "request t=" in line and " | passes " in line:
+                passes = line.split(" | passes ", 1)[1].split(" | ", 1)[0].split()
+                heard |= {(me, int(p.split(">")[0])) for p in passes if int(p.split(">")[0]) != me}
+    assert heard, "no decision ever awaited a team-mate's pass"
+    for p in summary["players"]:
+        assert not [e for e in p["server_errors"] if "say" in e or "illegal" in e], p
 
 
 def test_a_killed_adapter_is_relaunched_and_takes_its_player_over_mid_match(tmp_path):

@@ -343,7 +343,7 @@ def main() -> int:
     )
     ap.add_argument("--no-coach", action="store_true", help="our team without its coach (rcss_team --no-coach)")
     ap.add_argument(
-        "--talk", choices=("framework", "say"), default="framework", help="how our players talk (rcss_team --talk)"
+        "--talk", choices=("framework", "say"), default="say", help="how our players talk (rcss_team --talk)"
     )
     ap.add_argument(
         "--log-requests", action="store_true", help="our decisions log every new request (rcss_team --log-requests)"

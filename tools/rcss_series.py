@@ -373,8 +373,9 @@ def main() -> int:
     ap.add_argument(
         "--talk",
         choices=("framework", "say"),
-        default="framework",
-        help="say: our players talk only through the server's say and hear, as a competition's rules demand",
+        default="say",
+        help="say (the default): our players talk only through the server's say and hear, as a competition's"
+        " rules demand; framework: over the framework too",
     )
     args = ap.parse_args()
     if args.again:

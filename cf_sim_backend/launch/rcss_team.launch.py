@@ -19,7 +19,7 @@ ARGS = {
     "players": ("11", "how many players (1..11)"),
     "lease": ("3.0", "lease (s) of every component"),
     "log_dir": ("", "one log file per process (empty: a new temp dir)"),
-    "talk": ("framework", "framework, or say: team-mates talk only through the server's say and hear"),
+    "talk": ("say", "say: team-mates talk only through the server's say and hear (the rules); or framework"),
 }
 
 

@@ -67,7 +67,7 @@ class RcssPlayerParams(ComponentParams):
     team_size: int = Field(11, ge=1, le=11, description="players in the team (for the hosted decision's formation)")
     log_requests: bool = Field(False, description="the hosted decision logs every new request (its log_requests)")
     talk: Literal["framework", "say"] = Field(
-        "framework", description="how the hosted decision talks to team-mates (its talk): say is the rules' way"
+        "say", description="how the hosted decision talks to team-mates (its talk): say is the rules' way"
     )
 
 

@@ -70,9 +70,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     ap.add_argument(
         "--talk",
         choices=("framework", "say"),
-        default="framework",
-        help="how team-mates' decisions talk: framework (ACL over the framework) or say (the server's say and"
-        " hear only, as the rules of a competition demand; docs/decision.md)",
+        default="say",
+        help="how team-mates' decisions talk: say (the server's say and hear only, as the rules of a competition"
+        " demand; the default) or framework (times to the ball, passes and sightings over the framework;"
+        " docs/decision.md)",
     )
     ap.add_argument("--join-timeout", type=float, default=30.0, help="seconds each adapter may take to join")
     ap.add_argument(
