@@ -33,7 +33,7 @@ from cf_decision.receive import Announced, to_announce
 from cf_decision.requests import choice_text, same_request
 from cf_decision.set_piece import KICKING, SetPieceTaker
 from cf_decision.shared import merged, to_tell, told_to
-from cf_decision.talk import NOT_ME, heard_pass, pass_word, seen_claims
+from cf_decision.talk import NOT_ME, Listener, pass_word, seen_claims
 from cf_decision.touch import LastTouch
 from cf_decision.without_ball import NEVER, state_eta
 from cf_lang.ontology import Team
@@ -62,7 +62,7 @@ class PolicyTeam:
         self.log_dir = log_dir
         self.memories: dict[int, Memory] = {}  # number -> what he remembers (as the perception component)
         self.passes: dict[int, dict[int, Announced]] = {}  # hearer -> passer -> the pass he heard
-        self.not_mine: dict[int, dict[int, int]] = {}  # hearer -> team-mate -> when he said NOT_ME (--talk say)
+        self.listeners: dict[int, Listener] = {}  # hearer -> what he heard said (--talk say)
         self.size = sum(1 for p in sim.world.players.values() if p.side is side)
 
     def commands(self) -> None:
@@ -95,8 +95,7 @@ class PolicyTeam:
             mate_touched = touch.team is Team.OUR
             heard = list(self.passes.get(n, {}).values())
             if self.says:
-                not_theirs = frozenset(m for m, t in self.not_mine.get(n, {}).items() if st.time - t <= 2)
-                told = seen_claims(st, n, not_theirs)
+                told = seen_claims(st, n, self.listeners[n].not_theirs(st.time))
                 if not may_touch[n]:
                     self.sim.command(self.side, n, "say", NOT_ME)
             else:
@@ -136,15 +135,10 @@ class PolicyTeam:
 
     def _read_says(self, n: int, st) -> None:
         """The passes player ``n`` heard said (``--talk say``), as the decision component reads them."""
-        for heard in st.heard:
-            if heard.message == NOT_ME:
-                self.not_mine.setdefault(n, {})[heard.player_number] = heard.time
-            action = heard_pass(heard.message)
-            if action is not None and st.ball and st.ball.positioning:
+        for passer, action, when in self.listeners.setdefault(n, Listener()).hear(st):
+            if st.ball and st.ball.positioning:
                 ball = (st.ball.positioning.x, st.ball.positioning.y)
-                self.passes.setdefault(n, {})[heard.player_number] = Announced(
-                    heard.player_number, action, ball, heard.time
-                )
+                self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, when)
                 self.touches.setdefault(n, LastTouch()).played_by_mate()
 
     def write_logs(self) -> None:

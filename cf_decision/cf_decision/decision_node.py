@@ -43,7 +43,7 @@ from .requests import ActionRequests, choice_text, request_text
 from .set_piece import KICKING, SetPieceTaker
 from .shared import Heard, merged, to_tell, told_to
 from .situation import Decision, xy
-from .talk import NOT_ME, heard_pass, pass_word, seen_claims
+from .talk import NOT_ME, Listener, pass_word, seen_claims
 from .touch import LastTouch
 from .without_ball import NEVER, state_eta
 
@@ -100,8 +100,7 @@ class DecisionNode(GuardedNode, Node):
         self.claims: dict[int, tuple[int, float]] = {}  # team-mate number -> (eta, when heard)
         self.passes: dict[int, Announced] = {}  # team-mate number (or mine) -> the last pass he announced
         self.heard = Heard()  # what team-mates told they saw (shared.py)
-        self.said_seen: list[tuple[int, int, str]] = []  # the latest says read (talk say): each is read once
-        self.not_mine: dict[int, int] = {}  # team-mate -> when he last said the ball is not his (talk say)
+        self.listener = Listener()  # what team-mates said (talk say)
         self.last_ball: tuple[float, float] | None = None  # where I believed the ball last
         self.perception: str | None = None
         self.subscription = None
@@ -165,8 +164,7 @@ class DecisionNode(GuardedNode, Node):
         self.last_ball = xy(state.ball.positioning) if state.ball else None
         if self.says:
             self._read_says(state)
-            recent = {n for n, t in self.not_mine.items() if state.time - t <= 2}
-            claims = seen_claims(state, self.number, frozenset(recent))
+            claims = seen_claims(state, self.number, self.listener.not_theirs(state.time))
         else:
             now = time.monotonic()
             claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
@@ -211,23 +209,14 @@ class DecisionNode(GuardedNode, Node):
         """Ask the action provider to say ``text`` (beside the request in force; answers are not awaited)."""
         provider = self.agent.provider("Action", team=self.team, player_number=self.number)
         if provider is not None:
-            key = f":playerNumber {self.number} :whichTeam our"
-            self.agent.request(provider, f'(exec Player say {key} :message "{text}")', timeout=3.0)
+            self.agent.request(provider, self._exec(Decision("say", act.Say(message=text), "")), timeout=3.0)
 
     def _read_says(self, state: WorldState) -> None:
         """Take the passes team-mates said (talk ``say``): as a pass told over the framework, heard a
         cycle later, so its kick is taken to be in the cycle it was heard."""
-        for heard in state.heard:
-            if heard.message == NOT_ME:
-                self.not_mine[heard.player_number] = heard.time
-                continue
-            action = heard_pass(heard.message)
-            said = (heard.player_number, heard.time, heard.message)
-            if action is None or heard.player_number == self.number or said in self.said_seen:
-                continue
-            self.said_seen = [*self.said_seen[-7:], said]
+        for passer, action, when in self.listener.hear(state):
             if self.last_ball is not None:
-                self.passes[heard.player_number] = Announced(heard.player_number, action, self.last_ball, heard.time)
+                self.passes[passer] = Announced(passer, action, self.last_ball, when)
                 self.touch.played_by_mate()
 
     def _exec(self, decision: Decision) -> str:

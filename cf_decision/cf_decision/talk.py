@@ -27,6 +27,8 @@ from .without_ball import NEVER
 X_OFFSET, Y_OFFSET = 60.0, 40.0  # m: a point's coordinates are sent as decimetres from -60, -40
 POWERS = "0123456789a"  # a power's tens
 NOT_ME = "n"  # our set piece's taker: the ball is not mine to touch until another player has touched it
+NOT_MINE_FOR = 2  # cycles a team-mate's NOT_ME counts
+READ_KEPT = 8  # says remembered as read: a perception tells one for its cycle and the next
 
 
 def pass_word(action: act.Pass) -> str:
@@ -60,6 +62,34 @@ def heard_pass(text: str) -> act.Pass | None:
     except ValueError:
         return None
     return None
+
+
+class Listener:
+    """What one player keeps of his team-mates' says: who said NOT_ME lately, and which says he has
+    read (on rcssserver a say stays in the perception for the cycle it came and the next: each is
+    read once)."""
+
+    def __init__(self) -> None:
+        self.not_mine: dict[int, int] = {}  # team-mate -> the time he last said NOT_ME
+        self.read: list[tuple[int, int, str]] = []  # (number, time, text) of the latest says read
+
+    def hear(self, state: WorldState) -> list[tuple[int, act.Pass, int]]:
+        """The passes first heard in ``state``: (passer, pass, the game time it was heard)."""
+        passes = []
+        for heard in state.heard:
+            said = (heard.player_number, heard.time, heard.message)
+            if said in self.read:
+                continue
+            self.read = [*self.read[-(READ_KEPT - 1) :], said]
+            if heard.message == NOT_ME:
+                self.not_mine[heard.player_number] = heard.time
+            elif (action := heard_pass(heard.message)) is not None:
+                passes.append((heard.player_number, action, heard.time))
+        return passes
+
+    def not_theirs(self, now: int) -> frozenset[int]:
+        """The team-mates who said NOT_ME within NOT_MINE_FOR cycles of ``now``."""
+        return frozenset(n for n, t in self.not_mine.items() if now - t <= NOT_MINE_FOR)
 
 
 def seen_claims(state: WorldState, number: int, not_theirs: frozenset[int] = frozenset()) -> dict[int, int]:

@@ -7,9 +7,9 @@ import re
 
 import pytest
 
-from cf_decision.talk import NOT_ME, heard_pass, pass_word, seen_claims
+from cf_decision.talk import NOT_ME, Listener, heard_pass, pass_word, seen_claims
 from cf_decision.without_ball import NEVER, choose_interceptor
-from cf_lang.ontology import AbsolutePositioning, Ball, Player, Team, Velocity, WorldState
+from cf_lang.ontology import AbsolutePositioning, Ball, Heard, Player, Team, Velocity, WorldState
 from cf_lang.ontology import actions as act
 
 RCSS_SAY = re.compile(r"[A-Za-z0-9 ().+*/?<>_-]{1,10}")  # what rcssserver 19 carries in a say
@@ -95,3 +95,16 @@ def test_a_team_mate_who_said_the_ball_is_not_his_is_never_the_one_to_go():
     claims = seen_claims(state, 7, frozenset({4}))
     assert claims[4] == NEVER and choose_interceptor(7, 10, claims)
     assert heard_pass(NOT_ME) is None
+
+
+def test_a_say_is_read_once_though_the_perception_tells_it_two_cycles_and_not_me_lapses():
+    """On rcssserver a say stays in the perception for the cycle it came and the next."""
+    listener = Listener()
+
+    def state(t, *heard):
+        return WorldState(time=t, heard=tuple(Heard(player_number=n, message=m, time=h) for n, m, h in heard))
+
+    first = listener.hear(state(20, (4, "p7", 20), (6, NOT_ME, 20)))
+    assert [(n, a.to.player_number, t) for n, a, t in first] == [(4, 7, 20)]
+    assert listener.hear(state(21, (4, "p7", 20), (6, NOT_ME, 20))) == []  # told again: not new
+    assert listener.not_theirs(22) == {6} and listener.not_theirs(23) == frozenset()

@@ -10,7 +10,6 @@ It also counts what a benchmark needs: cycles, body commands sent, and those the
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 
 from cf_lang.errors import LanguageError
@@ -18,7 +17,7 @@ from cf_lang.ontology import FIELD
 from cf_sim_backend.rcss.belief import HALF_VIEW, Belief
 from cf_sim_backend.rcss.protocol import BODY_COMMANDS, parse
 from cf_sim_backend.skills import Command, Skill
-from cf_sim_backend.world import Side, norm_deg
+from cf_sim_backend.world import SAY_CHARACTERS, Side, norm_deg
 
 _EXECUTED = ("kick", "dash", "turn", "move", "catch", "tackle")  # sense_body counters of body commands
 _BALL_SKILLS = frozenset({"intercept", "shoot", "pass", "dribble", "holdBall", "kick", "catch", "tackle"})
@@ -30,7 +29,6 @@ AROUND_WITHIN = 2.0  # m: a ball this close is seen all round (visible_distance 
 NECK_LIMIT = 90.0  # rcssserver's maxneckang (and -minneckang)
 RECEIVE_SPEED = 0.8  # m/cycle: a ball rolling at least this fast goes where the belief says, unless touched
 RECEIVE_AHEAD = 3  # cycles: while a ball we go for is further off than this, every other see looks upfield
-_SAY_CHARS = re.compile(r"[^A-Za-z0-9 ().+*/?<>_-]")  # (the ActionService refuses such a say first)
 
 
 def _n(value: float) -> str:
@@ -53,7 +51,8 @@ def rcss_command(cmd: Command) -> str | None:
     if name == "move":  # own-half coordinates as for the left side: the server mirrors them for the right
         return f"(move {_n(args[0])} {_n(-args[1])})"
     if name == "say" and args:
-        text = _SAY_CHARS.sub("", str(args[0]))[:10]
+        # (The ActionService refuses a say rcssserver would not carry; what gets here is trimmed to it.)
+        text = "".join(c for c in str(args[0]) if c in SAY_CHARACTERS)[:10]
         return f'(say "{text}")' if text else None
     return None
 
