@@ -24,6 +24,8 @@ _FORMATION: dict[int, tuple[Role, float, float]] = {
     11: (Role.FORWARD, 2.0, -16.0),
 }
 UP_SHIFT = {Role.DEFENDER: 0.7, Role.MIDFIELDER: 1.0, Role.FORWARD: 1.0}  # per m of the ball in their half
+OUTLET_BALL_X = -20.0  # m: with the ball nearer our goal than this, the wide forwards
+OUTLET = (-13.0, 26.0)  # drop to here
 KICK_OFF_WING = 26.0  # m from the middle: where the wide forwards wait for a kick-off
 # For small teams: goalkeeper, then a forward, a defender, a midfielder, ...
 _SMALL_ORDER = [1, 10, 3, 7, 9, 4, 8, 11, 2, 6, 5]
@@ -44,8 +46,9 @@ def home_position(
 ) -> tuple[float, float]:
     """Formation position, pulled towards the ball: the block moves up and down the field with it.
 
-    Forwards never drop deeper than just behind the halfway line (an outlet when we win the ball)
-    and stay a metre onside of ``offside_x`` (the opponents' offside line), as midfielders do.
+    Forwards never drop deeper than just behind the halfway line (an outlet when we win the ball),
+    but for the wide forwards' OUTLET by the touch lines while the ball is deep in our half, and
+    stay a metre onside of ``offside_x`` (the opponents' offside line), as midfielders do.
     """
     role, x, y = _FORMATION[_slot(number, team_size)]
     if role is Role.GOALKEEPER:
@@ -58,6 +61,11 @@ def home_position(
     if offside_x is not None and role is not Role.DEFENDER:
         hx = min(hx, max(0.0, offside_x - 1.0))
     hy = y + 0.25 * ball_y
+    if role is Role.FORWARD and y != 0.0 and ball_x < OUTLET_BALL_X:
+        # The ball deep in our half: a base team's men are round it and its back line near the
+        # halfway line; between the two, by the touch lines, a team-mate would have been open at a
+        # quarter to two fifths of our kicks from our third (docs/performance.md, session 45).
+        return (OUTLET[0], math.copysign(OUTLET[1], y))
     return (hx, max(-30.0, min(30.0, hy)))
 
 

@@ -55,6 +55,15 @@ def test_in_their_half_the_block_follows_the_ball_closer_than_in_ours():
     assert home_position(7, ball_x=10.0)[0] - home_position(7, ball_x=0.0)[0] == 10.0
 
 
+def test_with_the_ball_deep_in_our_half_the_wide_forwards_drop_to_the_outlets_by_the_touch_lines():
+    assert home_position(9, ball_x=-30.0, ball_y=-10.0) == (-13.0, 26.0)
+    assert home_position(11, ball_x=-30.0, ball_y=10.0) == (-13.0, -26.0)
+    assert home_position(10, ball_x=-30.0)[0] == -5.0  # the centre forward stays up
+    assert home_position(9, ball_x=-15.0)[0] == -5.0 and home_position(9, ball_x=10.0)[0] == 12.0
+    d = decide(state((-5.0, 16.0), ball=(-35.0, 0.0), players=[mate(3, -34.0, 0.0)], number=9), 9, 11, {3: 1})
+    assert d.method == "moveTo" and math.dist((d.action.target.x, d.action.target.y), (-13.0, 26.0)) <= 4.0
+
+
 def test_fastest_player_goes_for_the_ball_and_ties_go_to_the_lower_number():
     assert choose_interceptor(7, 5, {7: 5, 8: 9})
     assert not choose_interceptor(8, 9, {7: 5, 8: 9})
