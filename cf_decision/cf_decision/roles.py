@@ -53,6 +53,11 @@ def home_position(
     role, x, y = _FORMATION[_slot(number, team_size)]
     if role is Role.GOALKEEPER:
         return (x, 0.0)
+    if role is Role.FORWARD and y != 0.0 and ball_x < OUTLET_BALL_X:
+        # The ball deep in our half: a base team's men are round it and its back line near the
+        # halfway line; between the two, by the touch lines, a team-mate would have been open at a
+        # quarter to two fifths of our kicks from our third (docs/performance.md, session 45).
+        return (OUTLET[0], math.copysign(OUTLET[1], y))
     # In their half the block follows the ball closer: with the ball 40 m up, midfielders 35 m
     # behind it left a wide forward alone against eight men (HELIOS base, session 23).
     shift = 0.55 * min(ball_x, 0.0) + UP_SHIFT[role] * max(ball_x, 0.0)
@@ -61,11 +66,6 @@ def home_position(
     if offside_x is not None and role is not Role.DEFENDER:
         hx = min(hx, max(0.0, offside_x - 1.0))
     hy = y + 0.25 * ball_y
-    if role is Role.FORWARD and y != 0.0 and ball_x < OUTLET_BALL_X:
-        # The ball deep in our half: a base team's men are round it and its back line near the
-        # halfway line; between the two, by the touch lines, a team-mate would have been open at a
-        # quarter to two fifths of our kicks from our third (docs/performance.md, session 45).
-        return (OUTLET[0], math.copysign(OUTLET[1], y))
     return (hx, max(-30.0, min(30.0, hy)))
 
 
