@@ -10,7 +10,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
-from rcss_ball_use import ball_use, reason, table, territory, territory_table
+from rcss_ball_use import ball_use, moves_table, reason, table, territory, territory_table
 from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import table as belief_table
 from rcss_goals import goal_rows, goals, summary
@@ -22,7 +22,7 @@ from rcss_picture import table as picture_table
 from rcss_reach_fit import LOSSES, lead, loss_table, set_off, set_off_table
 from rcss_reach_fit import kicks as reach_kicks
 from rcss_reach_fit import table as reach_table
-from rcss_series import again, match_stats, read_rcg, top_speeds
+from rcss_series import again, match_stats, moves_of, read_rcg, top_speeds
 from rcss_set_pieces import kind_of, set_pieces
 from rcss_set_pieces import table as set_piece_table
 
@@ -123,6 +123,24 @@ def test_where_each_team_had_the_ball_and_won_it_back_by_third_of_the_field(tmp_
     assert where["them"].held == [0, 10, 2] and where["them"].won == [0, 1, 0]  # past x=17.5: their third
     text = territory_table(where, "PYRUS")
     assert "| us | 0% | 33% | 0% | 0 | 0 | 0 |" in text and "| PYRUS | 0% | 56% | 11% | 0 | 1 | 0 |" in text
+
+
+def test_each_move_of_ours_is_counted_by_the_third_it_began_in_and_the_furthest_it_reached():
+    # (A game log's first frame sets the kick counts.) Our 2 kicks at x=-30 and the ball rolls to -10 before their 7 kicks it back; our 4 wins it at
+    # -20 and it rolls to 25, 4 kicks again (the same move), and their 7 kicks it at 25.
+    touches = {2: ("l", 2), 5: ("r", 7), 8: ("l", 4), 13: ("l", 4), 14: ("r", 7)}
+    ball = {1: -30, 2: -30, 3: -15, 4: -10, 5: -10, 6: -15, 7: -20, 8: -20, 9: -10, 10: 5, 11: 20, 12: 25}
+    kicks, frames = {("l", 2): 0, ("l", 4): 0, ("r", 7): 0}, []
+    for t in range(1, 17):
+        if t in touches:
+            kicks[touches[t]] += 1
+        frames.append((t, "play_on", (ball.get(t, 25.0), 0.0), [(s, n, 0.0, 0.0, k) for (s, n), k in kicks.items()]))
+    assert moves_of(frames, "l") == [[0, 1, 1], [0, 0, 0], [0, 0, 0]]
+    swap = {"l": "r", "r": "l"}  # the same match, with us playing from the right
+    flipped = [(t, m, (-b[0], b[1]), [(swap[p[0]], *p[1:]) for p in ps]) for t, m, b, ps in frames]
+    assert moves_of(flipped, "r") == moves_of(frames, "l")
+    text = moves_table(moves_of(frames, "l"))
+    assert "| our third | 2 | 0 | 1 | 1 |" in text and "| the middle third | 0 |  | 0 | 0 |" in text
 
 
 def test_tackles_idle_cycles_and_time_in_their_third_are_read_from_the_game_log(tmp_path, capsys):

@@ -17,6 +17,10 @@ docs/performance.md counts what loses the ball.
 A second table says where on the field each team had the ball (the share of play-on cycles
 after its last kick, by the ball's third of the field, thirds counted from our goal) and where
 it won the ball back (its first kick after the other team's).
+
+A third table says how far our moves got: each move (our kicks from the first after one of
+theirs, in play or at our set piece, to their next kick) by the third it began in and the
+furthest third the ball reached meanwhile.
 """
 
 from __future__ import annotations
@@ -32,7 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_series import Territory, kick_events, read_rcg, side_of, territory_of
+from rcss_series import Territory, kick_events, moves_of, read_rcg, side_of, territory_of
 
 CONTESTED = 1.2  # m: an opponent this near the ball kicks or tackles it as we kick it (rcssserver adds both)
 _DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
@@ -141,6 +145,21 @@ def territory_table(where: dict[str, Territory], opponent: str = "them") -> str:
     return "\n".join(rows)
 
 
+def moves(match: Path, team: str = "CF") -> list[list[int]]:
+    """Our moves by the third each began in and the furthest third the ball reached (``moves_of``)."""
+    frames, side, _ = game(match, team)
+    return moves_of(frames, side)
+
+
+def moves_table(counts: list[list[int]]) -> str:
+    rows = ["| our moves begun in | moves | got no further than our third | the middle third | reached their third |"]
+    rows.append("|---|---:|---:|---:|---:|")
+    for begun, (name, row) in enumerate(zip(("our third", "the middle third", "their third"), counts, strict=True)):
+        cells = ["" if k < begun else str(n) for k, n in enumerate(row)]  # (a move gets at least as far as it began)
+        rows.append(f"| {name} | {sum(row)} | " + " | ".join(cells) + " |")
+    return "\n".join(rows)
+
+
 def table(outcomes: dict[tuple[str, str], Outcome], after: int) -> str:
     rows = [
         "| with the ball | where | kicks | to a team-mate | lost | kept share | an opponent at the ball: kept "
@@ -169,7 +188,11 @@ def main() -> int:
     args = ap.parse_args()
     total: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
     where = {"us": Territory(), "them": Territory()}
+    reached = [[0, 0, 0] for _ in range(3)]
     for match in args.matches:
+        reached = [
+            [a + b for a, b in zip(r, m, strict=True)] for r, m in zip(reached, moves(match, args.team), strict=True)
+        ]
         for key, o in ball_use(match, args.team, args.after).items():
             total[key].add(o)
         for key, t in territory(match, args.team).items():
@@ -178,6 +201,8 @@ def main() -> int:
     print(table(total, args.after))
     print()
     print(territory_table(where))
+    print()
+    print(moves_table(reached))
     return 0
 
 

@@ -151,6 +151,28 @@ def territory_of(frames: list, our_side: str) -> dict[str, Territory]:
     return out
 
 
+def moves_of(frames: list, our_side: str) -> list[list[int]]:
+    """Our moves: for each third a move began in (our first kick after one of theirs, in play or at
+    a set piece), how many got no further than each third before the opponents next kicked the
+    ball (``read_rcg``'s frames; ``[begun][furthest]``, thirds counted from our goal)."""
+    forward = 1.0 if our_side == "l" else -1.0
+    out = [[0, 0, 0] for _ in range(3)]
+    events = kick_events(frames)
+    begun, holder = None, None
+    for j, (i, side, *_) in enumerate(events):
+        ours = side == our_side
+        if ours and holder != our_side:
+            begun = i
+        holder = side
+        ends = j + 1 == len(events) or events[j + 1][1] != our_side
+        if begun is not None and ends:
+            last = events[j + 1][0] if j + 1 < len(events) else len(frames) - 1
+            furthest = max(forward * f[2][0] for f in frames[begun : last + 1])
+            out[third_of(forward * frames[begun][2][0])][third_of(furthest)] += 1
+            begun = None
+    return out
+
+
 def match_stats(rcg: Path, our_side: str) -> dict:
     """Possession, shots, tackles, offsides and faults of both sides, and our idle cycles at the ball, from a game log."""
     frames = read_rcg(rcg, counters=True)
