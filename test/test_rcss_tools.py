@@ -10,11 +10,12 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
-from rcss_ball_use import ball_use, moves_table, reason, table, territory, territory_table
+from rcss_ball_use import ball_use, game_log, moves_table, reason, table, territory, territory_table
 from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import table as belief_table
 from rcss_goals import goal_rows, goals, summary
 from rcss_keeper import HEADER, row, shots
+from rcss_match import set_aside_earlier
 from rcss_options import best_gain, bin_of, in_behind, line_lanes, line_table, map_table, open_map, open_points, options
 from rcss_options import table as options_table
 from rcss_picture import picture
@@ -141,6 +142,22 @@ def test_each_move_of_ours_is_counted_by_the_third_it_began_in_and_the_furthest_
     assert moves_of(flipped, "r") == moves_of(frames, "l")
     text = moves_table(moves_of(frames, "l"))
     assert "| our third | 2 | 0 | 1 | 1 |" in text and "| the middle third | 0 |  | 0 | 0 |" in text
+
+
+def test_a_match_played_again_into_its_directory_sets_the_earlier_ones_files_aside(tmp_path):
+    assert set_aside_earlier(tmp_path / "new") is None and set_aside_earlier(tmp_path) is None
+    (tmp_path / "logs-CF").mkdir()
+    (tmp_path / "logs-CF" / "CF_9_rcss_player.log").write_text("t=5 pass: forward pass to team-mate 10\n")
+    for name in ("20261127120632-CF_0-vs-HELIOS_base_6.rcg", "server.log", "team-CF.log", "notes.txt"):
+        (tmp_path / name).write_text(name)
+    aside = set_aside_earlier(tmp_path)
+    assert aside == tmp_path / "earlier-1" and (aside / "logs-CF" / "CF_9_rcss_player.log").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["earlier-1", "notes.txt"]  # (not the tool's: left)
+    (tmp_path / "20261127130000-CF_1-vs-HELIOS_base_2.rcg").write_text("")
+    assert set_aside_earlier(tmp_path) == tmp_path / "earlier-2"
+    for name in ("20261127120000-CF_0-vs-null.rcg", "20261127121000-CF_0-vs-HELIOS_base_5.rcg"):
+        (tmp_path / name).write_text("")
+    assert game_log(tmp_path).name == "20261127121000-CF_0-vs-HELIOS_base_5.rcg"  # of two, the newest
 
 
 def test_tackles_idle_cycles_and_time_in_their_third_are_read_from_the_game_log(tmp_path, capsys):

@@ -82,8 +82,9 @@ def decisions(match: Path, team: str) -> dict[int, list[tuple[int, str]]]:
 
 
 def game_log(match: Path) -> Path:
-    """A match directory's game log (``*.rcg``); FileNotFoundError if it has none."""
-    rcg = next(iter(sorted(match.glob("*.rcg"))), None)
+    """A match directory's game log (``*.rcg``; of several, the newest: the server names them by
+    the time the match began); FileNotFoundError if it has none."""
+    rcg = max(match.glob("*.rcg"), default=None)
     if rcg is None:
         raise FileNotFoundError(f"no game log (*.rcg) in {match}")
     return rcg

@@ -140,8 +140,37 @@ def relaunched_processes(commag_log: str) -> int:
     return count
 
 
+def set_aside_earlier(out: Path) -> Path | None:
+    """Move an earlier match's files in ``out`` into ``out/earlier-N`` (None: there were none).
+
+    The players' logs are appended to (a relaunched process carries on in its log), and the
+    analysis tools read a match directory's game log and logs: a match played again into the same
+    directory would have mixed its lines with the earlier one's.
+    """
+    if not out.is_dir():
+        return None
+    ours = {"server.log", "error.log", "conf", "stats"}
+    found = [
+        p
+        for p in out.iterdir()
+        if p.suffix in (".rcg", ".rcl") or p.name in ours or p.name.startswith(("team-", "logs-"))
+    ]
+    if not found:
+        return None
+    n = 1
+    while (out / f"earlier-{n}").exists():
+        n += 1
+    aside = out / f"earlier-{n}"
+    aside.mkdir()
+    for p in found:
+        p.rename(aside / p.name)
+    print(f"rcss_match: an earlier match's files in {out} are now in {aside}", file=sys.stderr, flush=True)
+    return aside
+
+
 def run(args: argparse.Namespace) -> dict:
     out = Path(args.out or tempfile.mkdtemp(prefix="rcss-match-")).resolve()
+    set_aside_earlier(out)
     (out / "conf").mkdir(parents=True, exist_ok=True)
     (out / "stats").mkdir(exist_ok=True)
     port = args.port
