@@ -52,7 +52,7 @@ from cf_lang.ontology import actions as act
 from .goalkeeper import goalkeeper
 from .reach import top_speed
 from .receive import Announced, meeting, rolling
-from .roles import Role, home_position, kick_off_position, role_of
+from .roles import Role, back_line, home_position, kick_off_position, role_of
 from .situation import (
     FIELD_HALF_LENGTH,
     KICKABLE,
@@ -172,7 +172,10 @@ def decide(
         mark = marking(state, team_size, ball).get(number)
         if mark is not None:
             why = f"{role.value}: mark the opponent at {mark[0]:.0f} {mark[1]:.0f}"
-            return hold(me_pos, goal_side(mark), why, 1.0, tired(state))
+            spot = goal_side(mark)
+            if role is Role.DEFENDER:  # not behind our line: a man beyond it is offside
+                spot = (max(spot[0], back_line(ball[0])), spot[1])
+            return hold(me_pos, spot, why, 1.0, tired(state))
     x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1], offside_x=line)
     why = f"{role.value}: hold position"
     if role is Role.FORWARD and line is not None and not their_ball(state, ball) and ball[0] > -20.0:

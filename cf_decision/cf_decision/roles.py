@@ -26,6 +26,9 @@ _FORMATION: dict[int, tuple[Role, float, float]] = {
 UP_SHIFT = {Role.DEFENDER: 0.7, Role.MIDFIELDER: 1.0, Role.FORWARD: 1.0}  # per m of the ball in their half
 OUTLET_BALL_X = -20.0  # m: with the ball nearer our goal than this, the wide forwards
 OUTLET = (-13.0, 26.0)  # drop to here
+LINE_BEHIND_BALL = 10.0  # m: our back line holds at most this far behind the ball,
+LINE_DEEPEST = -45.0  # m: but never deeper than this,
+LINE_HIGHEST = -20.0  # m: nor, from the ball's pull, higher than this
 KICK_OFF_WING = 26.0  # m from the middle: where the wide forwards wait for a kick-off
 # For small teams: goalkeeper, then a forward, a defender, a midfielder, ...
 _SMALL_ORDER = [1, 10, 3, 7, 9, 4, 8, 11, 2, 6, 5]
@@ -49,6 +52,7 @@ def home_position(
     Forwards never drop deeper than just behind the halfway line (an outlet when we win the ball),
     but for the wide forwards' OUTLET by the touch lines while the ball is deep in our half, and
     stay a metre onside of ``offside_x`` (the opponents' offside line), as midfielders do.
+    Defenders hold our line: never deeper than :func:`back_line`.
     """
     role, x, y = _FORMATION[_slot(number, team_size)]
     if role is Role.GOALKEEPER:
@@ -63,10 +67,20 @@ def home_position(
     shift = 0.55 * min(ball_x, 0.0) + UP_SHIFT[role] * max(ball_x, 0.0)
     limit = {Role.DEFENDER: (-45.0, 20.0), Role.MIDFIELDER: (-35.0, 35.0), Role.FORWARD: (-5.0, 45.0)}[role]
     hx = max(limit[0], min(limit[1], x + shift))
+    if role is Role.DEFENDER:
+        # With the ball 20 m into our half the back four stood 7-10 m from our goal line, and HELIOS
+        # base's forwards came as near; held up, it shot a quarter less (docs/performance.md, session 46).
+        hx = max(hx, back_line(ball_x))
     if offside_x is not None and role is not Role.DEFENDER:
         hx = min(hx, max(0.0, offside_x - 1.0))
     hy = y + 0.25 * ball_y
     return (hx, max(-30.0, min(30.0, hy)))
+
+
+def back_line(ball_x: float) -> float:
+    """The deepest x a defender takes, as home spot or as marker, while the ball is at ``ball_x``: the
+    offside line we hold (a man of theirs beyond it is left offside)."""
+    return max(LINE_DEEPEST, min(ball_x - LINE_BEHIND_BALL, LINE_HIGHEST))
 
 
 def kick_off_position(number: int, team_size: int = 11) -> tuple[float, float]:

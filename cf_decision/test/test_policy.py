@@ -7,7 +7,7 @@ import math
 from cf_decision.goalkeeper import guard_spot
 from cf_decision.policy import decide
 from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
-from cf_decision.roles import Role, home_position, kick_off_position, role_of
+from cf_decision.roles import Role, back_line, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line, their_ball
 from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, free_ways, roomiest
@@ -366,16 +366,27 @@ def test_in_our_half_the_second_fastest_covers_the_way_from_an_opponents_ball_to
 
 
 def test_when_they_have_the_ball_defenders_and_midfielders_mark_goal_side():
-    holder, runner, far = opp(9, -20.0, 0.0), opp(10, -40.0, 6.0), opp(11, 30.0, 20.0)
-    players = [holder, runner, far, mate(4, -25.0, -10.0)]
-    st = state((-33.0, 4.0), ball=(-20.5, 0.0), players=players, number=3)
-    marks = marking(st, 11, (-20.5, 0.0))
+    holder, runner, far = opp(9, -32.0, 0.0), opp(10, -40.0, 6.0), opp(11, 30.0, 20.0)
+    players = [holder, runner, far, mate(4, -35.0, -10.0)]
+    st = state((-36.0, 4.0), ball=(-32.5, 0.0), players=players, number=3)
+    marks = marking(st, 11, (-32.5, 0.0))
     assert marks.get(3) == (-40.0, 6.0)  # the nearest pair; the man on the ball is the pressers'
     assert (30.0, 20.0) not in marks.values()  # too far from anyone's spot
     d = decide(st, 3, 11, {4: 2, 3: 20, 7: 5})
     assert d.method == "moveTo" and "mark" in d.why and d.action.target.x < -40.0  # between him and our goal
-    ours = state((-33.0, 4.0), ball=(-20.5, 0.0), players=[holder, runner, mate(7, -21.0, 0.5)], number=3)
+    ours = state((-36.0, 4.0), ball=(-32.5, 0.0), players=[holder, runner, mate(7, -33.0, 0.5)], number=3)
     assert "mark" not in decide(ours, 3, 11, {7: 0, 3: 20}).why  # our ball: keep the shape
+
+
+def test_our_back_line_holds_behind_the_ball_and_no_man_draws_it_deeper():
+    assert back_line(-20.5) == -30.5 and back_line(-40.0) == -45.0 and back_line(10.0) == -20.0
+    assert home_position(3, ball_x=-20.0)[0] == -30.0  # (the formation alone: -46, at the -45 limit)
+    assert home_position(3, ball_x=30.0)[0] == -35.0 + 0.7 * 30.0  # up the field the shift rules
+    runner = opp(10, -40.0, 6.0)  # a man of theirs 20 m behind the ball, by our goal
+    st = state((-33.0, 4.0), ball=(-20.5, 0.0), players=[opp(9, -20.0, 0.0), runner], number=3)
+    d = decide(st, 3, 11, {4: 2, 3: 20, 7: 5})
+    assert d.method == "moveTo" and "mark" in d.why and d.action.target.x == -30.5  # he is left offside
+    assert home_position(7, ball_x=-20.0)[0] == -18.0 - 0.55 * 20.0  # midfielders are not held up
 
 
 def test_any_player_within_tackling_reach_of_an_opponents_ball_goes_for_it():
