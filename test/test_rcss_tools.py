@@ -155,9 +155,9 @@ def test_a_match_played_again_into_its_directory_sets_the_earlier_ones_files_asi
     assert sorted(p.name for p in tmp_path.iterdir()) == ["earlier-1", "notes.txt"]  # (not the tool's: left)
     (tmp_path / "20261127130000-CF_1-vs-HELIOS_base_2.rcg").write_text("")
     assert set_aside_earlier(tmp_path) == tmp_path / "earlier-2"
-    for name in ("20261127120000-CF_0-vs-null.rcg", "20261127121000-CF_0-vs-HELIOS_base_5.rcg"):
+    for name in ("incomplete.rcg", "20261127120000-CF_0-vs-null.rcg", "20261127121000-CF_0-vs-HELIOS_base_5.rcg"):
         (tmp_path / name).write_text("")
-    assert game_log(tmp_path).name == "20261127121000-CF_0-vs-HELIOS_base_5.rcg"  # of two, the newest
+    assert game_log(tmp_path).name == "20261127121000-CF_0-vs-HELIOS_base_5.rcg"  # the newest finished one
 
 
 def test_tackles_idle_cycles_and_time_in_their_third_are_read_from_the_game_log(tmp_path, capsys):

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_series import Territory, kick_events, moves_of, read_rcg, side_of, territory_of
+from rcss_series import Territory, kick_events, moves_of, newest_game_log, read_rcg, side_of, territory_of
 
 CONTESTED = 1.2  # m: an opponent this near the ball kicks or tackles it as we kick it (rcssserver adds both)
 _DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
@@ -82,9 +82,8 @@ def decisions(match: Path, team: str) -> dict[int, list[tuple[int, str]]]:
 
 
 def game_log(match: Path) -> Path:
-    """A match directory's game log (``*.rcg``; of several, the newest: the server names them by
-    the time the match began); FileNotFoundError if it has none."""
-    rcg = max(match.glob("*.rcg"), default=None)
+    """A match directory's game log (``*.rcg``, ``newest_game_log``); FileNotFoundError if it has none."""
+    rcg = newest_game_log(match)
     if rcg is None:
         raise FileNotFoundError(f"no game log (*.rcg) in {match}")
     return rcg

@@ -173,6 +173,12 @@ def moves_of(frames: list, our_side: str) -> list[list[int]]:
     return out
 
 
+def newest_game_log(match: Path) -> Path | None:
+    """A match directory's game log: of several, the newest finished one (the server names them by
+    the time the match began, and a match it is still writing ``incomplete.rcg``); None if none."""
+    return max(match.glob("*.rcg"), key=lambda p: (p.name != "incomplete.rcg", p.name), default=None)
+
+
 def match_stats(rcg: Path, our_side: str) -> dict:
     """Possession, shots, tackles, offsides and faults of both sides, and our idle cycles at the ball, from a game log."""
     frames = read_rcg(rcg, counters=True)
@@ -304,9 +310,9 @@ def play(args: argparse.Namespace, n: int) -> dict:
         "seconds": round(time.monotonic() - t0),
         "side": side,
     }
-    logs = sorted(out.glob("*.rcg"))
-    if logs:
-        row |= match_stats(logs[-1], side)
+    rcg = newest_game_log(out)
+    if rcg is not None:
+        row |= match_stats(rcg, side)
     return row
 
 
@@ -354,9 +360,9 @@ def again(out: Path, team: str) -> int:
         return 2
     rows = json.loads((out / "series.json").read_text())
     for r in rows:
-        logs = sorted((out / f"match-{r['n']}").glob("*.rcg"))
-        if "error" not in r and logs:
-            r |= match_stats(logs[-1], r.get("side") or side_of(logs[-1], team))
+        rcg = newest_game_log(out / f"match-{r['n']}")
+        if "error" not in r and rcg is not None:
+            r |= match_stats(rcg, r.get("side") or side_of(rcg, team))
     print(HEADER)
     for r in rows:
         print(row_line(r))
