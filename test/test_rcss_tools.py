@@ -127,8 +127,9 @@ def test_where_each_team_had_the_ball_and_won_it_back_by_third_of_the_field(tmp_
 
 
 def test_each_move_of_ours_is_counted_by_the_third_it_began_in_and_the_furthest_it_reached():
-    # (A game log's first frame sets the kick counts.) Our 2 kicks at x=-30 and the ball rolls to -10 before their 7 kicks it back; our 4 wins it at
-    # -20 and it rolls to 25, 4 kicks again (the same move), and their 7 kicks it at 25.
+    # (A game log's first frame sets the kick counts.) Our 2 kicks at x=-30 and the ball rolls to
+    # -10 before their 7 kicks it back; our 4 wins it at -20 and it rolls to 25, 4 kicks again (the
+    # same move), and their 7 kicks it at 25.
     touches = {2: ("l", 2), 5: ("r", 7), 8: ("l", 4), 13: ("l", 4), 14: ("r", 7)}
     ball = {1: -30, 2: -30, 3: -15, 4: -10, 5: -10, 6: -15, 7: -20, 8: -20, 9: -10, 10: 5, 11: 20, 12: 25}
     kicks, frames = {("l", 2): 0, ("l", 4): 0, ("r", 7): 0}, []
