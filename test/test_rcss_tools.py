@@ -3,13 +3,18 @@
 from __future__ import annotations
 
 import math
+import signal
+import subprocess
 import sys
+import textwrap
+import time
 from pathlib import Path
 
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
+from proctree import run_passing_on
 from rcss_ball_use import ball_use, game_log, moves_table, reason, table, territory, territory_table
 from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import table as belief_table
@@ -576,3 +581,49 @@ def test_the_keeper_tool_tells_a_shot_he_could_reach_from_one_nobody_could(tmp_p
     assert len(straight) == 1 and straight[0].reached and straight[0].from_spot
     assert "| far | 1 | 1 | 0 | 1 |" in row("far", wide) and HEADER.startswith("| match |")
     assert row("none", []) == "| none | 0 | 0 | - | - | - |"
+
+
+# A child that, sent SIGTERM, writes which signal it got (its clean-up) and leaves.
+CLEANS_UP = textwrap.dedent(
+    """
+    import pathlib, signal, sys, time
+    def clean_up(signum, _frame):
+        pathlib.Path(sys.argv[1]).write_text(str(signum))
+        sys.exit(0)
+    signal.signal(signal.SIGTERM, clean_up)
+    pathlib.Path(sys.argv[2]).write_text("up")
+    time.sleep(120)
+    """
+)
+
+
+def test_a_series_stopped_by_sigterm_passes_it_to_the_match_and_waits_for_its_clean_up(tmp_path):
+    """rcss_series runs each match (and rcss_match its network namespace) through run_passing_on: a
+    SIGTERM to the series reaches the match, which stops the server and both teams before the series
+    ends. (subprocess.run sent the match SIGKILL: its server and the opponent's players ran on.)"""
+    child, cleaned, up = tmp_path / "child.py", tmp_path / "cleaned", tmp_path / "up"
+    child.write_text(CLEANS_UP)
+    parent = tmp_path / "parent.py"
+    tools = Path(__file__).resolve().parents[1] / "tools"
+    parent.write_text(
+        f"import sys\nsys.path.insert(0, {str(tools)!r})\nfrom proctree import run_passing_on\n"
+        f"run_passing_on([sys.executable, {str(child)!r}, {str(cleaned)!r}, {str(up)!r}])\n"
+    )
+    series = subprocess.Popen([sys.executable, str(parent)])
+    deadline = time.monotonic() + 60
+    while not up.exists():
+        assert series.poll() is None and time.monotonic() < deadline, "the child never came up"
+        time.sleep(0.05)
+    series.send_signal(signal.SIGTERM)
+    assert series.wait(timeout=60) == 128 + signal.SIGTERM
+    assert cleaned.read_text() == str(int(signal.SIGTERM))  # the child cleaned up before the parent left
+
+
+def test_a_match_past_its_time_gets_sigterm_to_clean_up_before_the_series_goes_on(tmp_path):
+    child, cleaned, up = tmp_path / "child.py", tmp_path / "cleaned", tmp_path / "up"
+    child.write_text(CLEANS_UP)
+    with pytest.raises(subprocess.TimeoutExpired):
+        run_passing_on([sys.executable, str(child), str(cleaned), str(up)], timeout=10.0)
+    assert cleaned.read_text() == str(int(signal.SIGTERM))
+    done = run_passing_on([sys.executable, "-c", "print('ok')"], stdout=subprocess.PIPE, text=True)
+    assert (done.returncode, done.stdout) == (0, "ok\n")

@@ -1,8 +1,12 @@
-"""The processes below a process, and the CPU they used (from /proc): what the demo and rcss_match measure."""
+"""The processes below a process, and the CPU they used (from /proc): what the demo and rcss_match measure;
+and a child process run to its end that a SIGTERM or SIGINT to us reaches too."""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
+import subprocess
 
 CLOCK_TICKS = os.sysconf("SC_CLK_TCK")
 
@@ -67,3 +71,48 @@ class CpuMeter:
 
     def used(self) -> float:
         return sum(cpu - self.base.get(pid, 0.0) for pid, cpu in self.last.items())
+
+
+PASSED_ON = (signal.SIGTERM, signal.SIGINT)
+TERM_GRACE = 30.0  # s a child has to clean up after its time is over, before SIGKILL
+
+
+def run_passing_on(argv: list[str], timeout: float | None = None, **popen: object) -> subprocess.CompletedProcess:
+    """Run ``argv`` to its end as ``subprocess.run`` does, but a SIGTERM or SIGINT sent to us meanwhile
+    is passed on to the child, and we wait for it to clean up before we stop (SystemExit 128 + signal).
+    Past ``timeout`` it gets a SIGTERM, then TERM_GRACE seconds, then SIGKILL (TimeoutExpired).
+
+    ``subprocess.run`` kills its child with SIGKILL when interrupted: a series of matches stopped so
+    left the child's own children (rcssserver, the opponent's eleven players) running, and they took
+    the CPU of whatever ran next.
+    """
+    child: subprocess.Popen | None = None
+    received: list[int] = []
+
+    def pass_on(signum: int, _frame: object) -> None:
+        received.append(signum)
+        if child is not None:
+            with contextlib.suppress(ProcessLookupError):
+                child.send_signal(signum)
+
+    before = {s: signal.signal(s, pass_on) for s in PASSED_ON}
+    try:
+        child = subprocess.Popen(argv, **popen)
+        if received:  # (a signal before the child existed)
+            child.send_signal(received[0])
+        try:
+            out, err = child.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            child.terminate()
+            try:
+                child.communicate(timeout=TERM_GRACE)
+            except subprocess.TimeoutExpired:
+                child.kill()
+                child.communicate()
+            raise
+    finally:
+        for s, handler in before.items():
+            signal.signal(s, handler)
+    if received:
+        raise SystemExit(128 + received[0])
+    return subprocess.CompletedProcess(argv, child.returncode, out, err)

@@ -22,6 +22,7 @@ cannot collide.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import re
@@ -36,7 +37,7 @@ import time
 from pathlib import Path
 
 from ament_index_python.packages import get_package_prefix
-from proctree import CpuMeter, descendants
+from proctree import PASSED_ON, CpuMeter, descendants, run_passing_on
 
 TEAM_EXIT_WAIT = 60.0  # s the team has to leave once time is over (it leaves as soon as it can)
 
@@ -295,13 +296,18 @@ def run(args: argparse.Namespace) -> dict:
             trainer.poll()
         summary["team_exit_codes"] = [p.poll() for p in team_procs]
     finally:
+        for s in PASSED_ON:  # a second SIGINT or SIGTERM (a Ctrl-C reaches us twice) would cut this short
+            signal.signal(s, signal.SIG_IGN)
         for p in reversed(procs):
             if p.poll() is None:
                 p.send_signal(signal.SIGINT)
         for p in reversed(procs):
-            try:
+            with contextlib.suppress(subprocess.TimeoutExpired):
                 p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
+            # Each was started in a session (and process group) of its own; what is left of the group
+            # once its leader is gone, or 10 s on, goes too: HELIOS base's start script ends at once
+            # and leaves its eleven players running.
+            with contextlib.suppress(ProcessLookupError):
                 os.killpg(p.pid, signal.SIGKILL)
     summary["server_exit_code"] = server.returncode
     summary["players"] = players = [json.loads(f.read_text()) for f in sorted((out / "stats").glob("*.json"))]
@@ -384,15 +390,20 @@ def main() -> int:
         if not shutil.which("unshare"):
             ap.error("unshare is missing: install util-linux or pass --no-isolate")
         argv = ["unshare", "-n", "--", sys.executable, *sys.argv]
-        return subprocess.call(argv, env={**os.environ, "CF_RCSS_ISOLATED": "1"})
+        return run_passing_on(argv, env={**os.environ, "CF_RCSS_ISOLATED": "1"}).returncode
     if os.environ.get("CF_RCSS_ISOLATED") == "1":
         subprocess.run(["ip", "link", "set", "lo", "up"], check=True)
+    signal.signal(signal.SIGTERM, stop)  # as SIGINT does: the finally clauses stop what the match started
     try:
         print(json.dumps(run(args)), flush=True)
     finally:
         if os.environ.get("CF_RCSS_ISOLATED") == "1":
             kill_namespace_leftovers()
     return 0
+
+
+def stop(signum: int, _frame: object) -> None:
+    raise SystemExit(128 + signum)
 
 
 def kill_namespace_leftovers() -> None:

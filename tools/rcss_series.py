@@ -35,6 +35,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from proctree import run_passing_on
+
 from cf_sim_backend.player_types import PlayerType
 from cf_sim_backend.rcss.coach import player_type
 from cf_sim_backend.rcss.protocol import parse
@@ -288,7 +290,7 @@ def play(args: argparse.Namespace, n: int) -> dict:
         argv.append("--log-requests")
     argv += ["--talk", args.talk]
     t0 = time.monotonic()
-    done = subprocess.run(argv, capture_output=True, text=True, timeout=args.timeout + 300)
+    done = run_passing_on(argv, timeout=args.timeout + 300, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         summary = json.loads(done.stdout.strip().splitlines()[-1])
     except (IndexError, ValueError):
