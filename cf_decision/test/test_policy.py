@@ -7,7 +7,7 @@ import math
 from cf_decision.goalkeeper import guard_spot
 from cf_decision.policy import decide
 from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
-from cf_decision.roles import Role, back_line, home_position, kick_off_position, role_of
+from cf_decision.roles import KICK_OFF_WING, Role, back_line, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line, their_ball
 from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, free_ways, roomiest
@@ -182,6 +182,12 @@ def test_at_our_kick_off_the_wide_forwards_wait_out_wide_and_the_pass_finds_one_
     wide = decide(state((10.0, 10.0), ball=(0.0, 0.0), mode=PlayMode.BEFORE_KICK_OFF), 9, 11, {})
     assert isinstance(wide.action, act.Move) and wide.action.target.x < 0 and abs(wide.action.target.y) >= 25.0
     assert abs(home_position(9, ball_x=0.0)[1]) < 20.0  # in play he comes back in
+    assert [abs(kick_off_position(n)[1]) for n in (9, 11)] == [KICK_OFF_WING] * 2 and KICK_OFF_WING > 30.0
+    midfield = [kick_off_position(n) for n in (6, 7, 8)]
+    assert all(-10.0 < x < 0.0 for x, _ in midfield)  # near the halfway line, in our half,
+    assert all(
+        x > home_position(n, ball_x=0.0)[0] + 8.0 for n, (x, _) in zip((6, 7, 8), midfield, strict=True)
+    )  # 10-12 m up
     # HELIOS base's kick-off: ten men in two rows of five, within 10 m of the middle.
     rows = [opp(2 + i, x, y) for i, (x, y) in enumerate((x, y) for x in (15.0, 25.0) for y in (-10, -5, 0, 5, 10))]
     left, right = kick_off_position(9, 11), kick_off_position(11, 11)
