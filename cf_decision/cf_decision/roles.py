@@ -29,7 +29,7 @@ OUTLET = (-13.0, 26.0)  # drop to here
 LINE_BEHIND_BALL = 10.0  # m: our back line holds at most this far behind the ball,
 LINE_DEEPEST = -45.0  # m: but never deeper than this,
 LINE_HIGHEST = -20.0  # m: nor, from the ball's pull, higher than this
-KICK_OFF_WING = 31.0  # m from the middle: where the wide forwards wait for a kick-off,
+KICK_OFF_WING = 31.0  # m from the middle: where the wide forwards wait for a kick-off
 KICK_OFF_MIDFIELD = (-3.0, -8.0)  # x of the wide midfielders and the central one at our kick-off
 # For small teams: goalkeeper, then a forward, a defender, a midfielder, ...
 _SMALL_ORDER = [1, 10, 3, 7, 9, 4, 8, 11, 2, 6, 5]
@@ -91,7 +91,7 @@ def kick_off_position(number: int, team_size: int = 11) -> tuple[float, float]:
     A base team packs its kick-off into the middle (HELIOS base: ten men within 10 m of it), so a
     forward waiting near the side line can be found with a pass into the space in front of him.
     From 26 m out he was met 15-20 m into their half; from 31 m, with the midfield 12 m nearer,
-    half our kick-offs reached their third, not a quarter (docs/performance.md, session 47).
+    three in five of our kick-offs reached their third, not one in four (docs/performance.md, session 47).
     """
     x, y = home_position(number, team_size, ball_x=0.0)
     role = role_of(number, team_size)
