@@ -21,6 +21,9 @@ from pathlib import Path
 
 from cf_sim_backend.rcss.trace import belief_errors, localisation_errors
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tools"))
+from proctree import run_passing_on  # (tools/ is not a package)
+
 ROOT = Path(__file__).resolve().parent.parent
 DATA = ROOT / "cf_sim_backend/test/data/rcss"
 TRACES = ["player-trainer-150cycles.log", "player-trainer-opponents-1000cycles-synch.log.gz"]
@@ -53,7 +56,7 @@ def match(server: str, players: int, cycles: int, realtime: bool) -> dict:
     out = Path(tempfile.mkdtemp(prefix="bench-rcss-"))
     argv = [sys.executable, str(ROOT / "tools/rcss_match.py"), "--server", server, "--players", str(players)]
     argv += ["--cycles", str(cycles), "--out", str(out)] + (["--realtime"] if realtime else [])
-    done = subprocess.run(argv, capture_output=True, text=True, timeout=3000)
+    done = run_passing_on(argv, timeout=3000, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if done.returncode != 0:
         raise SystemExit(done.stderr[-2000:])
     return json.loads(done.stdout.strip().splitlines()[-1])

@@ -33,6 +33,9 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent / "tools"))
+from proctree import run_passing_on  # noqa: E402 (tools/ is not a package)
+
 DEMO = HERE.parent / "tools" / "demo.py"
 
 
@@ -56,7 +59,7 @@ def run(players: int, layout: str, half_cycles: int, seed: int) -> dict:
 def rcss(server: str, layout: str, cycles: int) -> dict:
     argv = [sys.executable, str(HERE.parent / "tools" / "rcss_match.py"), "--server", server, "--realtime"]
     argv += ["--players", "11", "--cycles", str(cycles), "--layout", layout]
-    done = subprocess.run(argv, capture_output=True, text=True, timeout=1800)
+    done = run_passing_on(argv, timeout=1800, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         summary = json.loads(done.stdout.strip().splitlines()[-1])
     except (IndexError, ValueError):
