@@ -110,3 +110,19 @@ def test_a_killed_adapter_is_relaunched_and_takes_its_player_over_mid_match(tmp_
     three = next(p for p in summary["players"] if p["number"] == 3)
     assert three["mode"] == "time_over" and three["cycles"] >= 20 and three["body_commands"] > 0
     assert all(p["mode"] == "time_over" for p in summary["players"])
+
+
+DRILL = Path(__file__).resolve().parents[1] / "tools" / "rcss_drill.py"
+
+
+def test_a_drill_sets_our_free_kick_up_again_and_again_and_counts_each_try(tmp_path):
+    out = tmp_path / "drill"
+    argv = [sys.executable, str(DRILL), "--server", SERVER, "--out", str(out), "--players", "3"]
+    argv += ["--drill", "free-kick", "--at", "20", "10", "--tries", "3", "--window", "20"]
+    done = subprocess.run(argv, capture_output=True, text=True, timeout=900)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert "3 tries taken of 3" in done.stdout, done.stdout
+    result = json.loads((out / "drill.json").read_text())
+    assert len(result["starts"]) == 3 and result["team_exit_codes"] == [0]
+    # Each try began where the trainer put the ball (ours is the left side: x up the field).
+    assert all(t["taken"] and t["furthest"] >= 20.0 for t in result["tries"]), result["tries"]

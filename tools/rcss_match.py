@@ -34,12 +34,16 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from ament_index_python.packages import get_package_prefix
 from proctree import PASSED_ON, CpuMeter, descendants, run_passing_on
 
+POLL_SPAN = 0.2  # s a trainer's poll reads for at most
 TEAM_EXIT_WAIT = 60.0  # s the team has to leave once time is over (it leaves as soon as it can)
+# What is played once everyone is up: (args, trainer, server, our team's processes, summary); time over ends it.
+Play = Callable[[argparse.Namespace, "Trainer", subprocess.Popen, list, dict], None]
 
 
 def udp_port_open(port: int) -> bool:
@@ -63,6 +67,7 @@ class Trainer:
         self.addr = ("127.0.0.1", port)
         self.mode = "before_kick_off"
         self.time = 0
+        self.thinks = 0  # synch mode, the eye on: the server's (think)s, one a simulation step in any play mode
         self.looked: str | None = None
         self.half_time = False  # the referee called half time
 
@@ -92,8 +97,10 @@ class Trainer:
         return 0
 
     def poll(self) -> None:
-        """Read what is there; answer (think) with (done)."""
-        while True:
+        """Read what is there (for at most POLL_SPAN s: with the eye on and no player left, the server
+        steps as fast as we answer); answer (think) with (done)."""
+        end = time.monotonic() + POLL_SPAN
+        while time.monotonic() < end:
             try:
                 data, _ = self.sock.recvfrom(65536)
             except TimeoutError:
@@ -102,7 +109,10 @@ class Trainer:
             if text.startswith("(ok look"):
                 self.looked = text
             elif text == "(think)":
+                self.thinks += 1
                 self.send("(done)")
+            elif text.startswith("(see_global "):  # the eye on: the game time every step
+                self.time = int(text[12 : text.index(" ", 12)])
             elif text.startswith("(hear ") and " referee " in text:  # (hear referee TIME MODE) for a trainer
                 parts = text.strip("()").split()
                 self.mode = parts[-1]
@@ -169,7 +179,8 @@ def set_aside_earlier(out: Path) -> Path | None:
     return aside
 
 
-def run(args: argparse.Namespace) -> dict:
+def run(args: argparse.Namespace, play: Play | None = None) -> dict:
+    """Start the server, the trainer and both teams, ``play`` (a match unless told), stop them all; the summary."""
     out = Path(args.out or tempfile.mkdtemp(prefix="rcss-match-")).resolve()
     set_aside_earlier(out)
     (out / "conf").mkdir(parents=True, exist_ok=True)
@@ -247,48 +258,7 @@ def run(args: argparse.Namespace) -> dict:
                 if time.monotonic() > deadline:
                     raise RuntimeError(f"the opponent did not bring {args.opponent_players} players in 90 s")
             summary["opponent"] = args.opponent
-        t0 = time.monotonic()
-        for _ in range(30):  # let the decisions find their providers and move into formation
-            trainer.poll()
-        if args.kick_off == "referee":
-            # The referee's kick-off (what a monitor's button sends) gives every player no coach has
-            # changed a type; coaches choose theirs before it (HELIOS base's once 10 cycles have stood still).
-            for _ in range(40):
-                trainer.poll()
-            trainer.send("(start)")
-        else:
-            trainer.send("(change_mode kick_off_l)")
-        meter = CpuMeter(team_procs[0].pid)  # our team: its ComMAg, adapters, decisions, relaunches
-        meter.start()
-        sampled, start_cycle = time.monotonic(), trainer.time
-        deadline = time.monotonic() + args.timeout
-        kill = tuple(int(v) for v in args.kill.split("@")) if args.kill else None
-        half_time_seen = None  # when the second half's before_kick_off began (its kick-off is the trainer's too)
-        while trainer.mode != "time_over":
-            trainer.poll()
-            if trainer.half_time and half_time_seen is None:
-                half_time_seen = time.monotonic()
-            if half_time_seen and trainer.mode == "before_kick_off" and time.monotonic() - half_time_seen > 2.0:
-                trainer.send("(change_mode kick_off_r)")
-                half_time_seen = 0.0  # done: a falsy non-None
-            if time.monotonic() - sampled > 1.0:
-                meter.sample()
-                sampled = time.monotonic()
-            if kill and trainer.time >= kill[1] and "killed" not in summary:
-                summary["killed"] = {
-                    "number": kill[0],
-                    "cycle": trainer.time,
-                    "pid": kill_adapter(args.team, kill[0], team_procs[0].pid),
-                }
-            if server.poll() is not None:
-                raise RuntimeError(f"rcssserver exited with {server.returncode}: see {out / 'server.log'}")
-            if time.monotonic() > deadline:
-                raise RuntimeError(f"the match did not end in {args.timeout} s (at cycle {trainer.time})")
-        meter.sample()
-        cycles = max(1, trainer.time - start_cycle)
-        summary["seconds"] = round(time.monotonic() - t0, 1)
-        summary["our_cpu_ms_per_cycle"] = round(1000 * meter.used() / cycles, 2)
-        summary["our_cpu_ms_per_player_cycle"] = round(1000 * meter.used() / cycles / args.players, 2)
+        (play or play_match)(args, trainer, server, team_procs, summary)
         # The team leaves on its own once time is over; on a loaded machine (a CI run beside it) its
         # eleven players, their decisions and the ComMAg had not shut down 15 s after.
         end = time.monotonic() + TEAM_EXIT_WAIT
@@ -320,6 +290,54 @@ def run(args: argparse.Namespace) -> dict:
     return summary
 
 
+def play_match(
+    args: argparse.Namespace, trainer: Trainer, server: subprocess.Popen, team_procs: list, summary: dict
+) -> None:
+    """Kick off once everyone is up, play until time over, and put our CPU per cycle and the team's exit in ``summary``."""
+    t0 = time.monotonic()
+    for _ in range(30):  # let the decisions find their providers and move into formation
+        trainer.poll()
+    if args.kick_off == "referee":
+        # The referee's kick-off (what a monitor's button sends) gives every player no coach has
+        # changed a type; coaches choose theirs before it (HELIOS base's once 10 cycles have stood still).
+        for _ in range(40):
+            trainer.poll()
+        trainer.send("(start)")
+    else:
+        trainer.send("(change_mode kick_off_l)")
+    meter = CpuMeter(team_procs[0].pid)  # our team: its ComMAg, adapters, decisions, relaunches
+    meter.start()
+    sampled, start_cycle = time.monotonic(), trainer.time
+    deadline = time.monotonic() + args.timeout
+    kill = tuple(int(v) for v in args.kill.split("@")) if args.kill else None
+    half_time_seen = None  # when the second half's before_kick_off began (its kick-off is the trainer's too)
+    while trainer.mode != "time_over":
+        trainer.poll()
+        if trainer.half_time and half_time_seen is None:
+            half_time_seen = time.monotonic()
+        if half_time_seen and trainer.mode == "before_kick_off" and time.monotonic() - half_time_seen > 2.0:
+            trainer.send("(change_mode kick_off_r)")
+            half_time_seen = 0.0  # done: a falsy non-None
+        if time.monotonic() - sampled > 1.0:
+            meter.sample()
+            sampled = time.monotonic()
+        if kill and trainer.time >= kill[1] and "killed" not in summary:
+            summary["killed"] = {
+                "number": kill[0],
+                "cycle": trainer.time,
+                "pid": kill_adapter(args.team, kill[0], team_procs[0].pid),
+            }
+        if server.poll() is not None:
+            raise RuntimeError(f"rcssserver exited with {server.returncode}: see {summary['out']}/server.log")
+        if time.monotonic() > deadline:
+            raise RuntimeError(f"the match did not end in {args.timeout} s (at cycle {trainer.time})")
+    meter.sample()
+    cycles = max(1, trainer.time - start_cycle)
+    summary["seconds"] = round(time.monotonic() - t0, 1)
+    summary["our_cpu_ms_per_cycle"] = round(1000 * meter.used() / cycles, 2)
+    summary["our_cpu_ms_per_player_cycle"] = round(1000 * meter.used() / cycles / args.players, 2)
+
+
 def command_counts(players: list[dict]) -> dict:
     """Body commands our players sent and the server executed, those it did not by kind, and how late any went out."""
     sent = sum(p["body_commands"] for p in players)
@@ -339,8 +357,9 @@ def command_counts(players: list[dict]) -> dict:
     }
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def parser(description: str = __doc__.split("\n\n")[0]) -> argparse.ArgumentParser:
+    """The options of a match on rcssserver (a drill adds its own)."""
+    ap = argparse.ArgumentParser(description=description)
     ap.add_argument("--server", default=os.environ.get("RCSSSERVER", ""), help="rcssserver binary ($RCSSSERVER)")
     ap.add_argument("--team", default="CF")
     ap.add_argument("--opponent", default="CFB")
@@ -383,7 +402,22 @@ def main() -> int:
     ap.add_argument(
         "--log-requests", action="store_true", help="our decisions log every new request (rcss_team --log-requests)"
     )
-    args = ap.parse_args()
+    return ap
+
+
+def main() -> int:
+    ap = parser()
+    return launch(ap, ap.parse_args())
+
+
+def launch(
+    ap: argparse.ArgumentParser,
+    args: argparse.Namespace,
+    play: Play | None = None,
+    report: Callable[[dict], None] = lambda summary: print(json.dumps(summary), flush=True),
+) -> int:
+    """Run ``play`` (a match unless told) in a private network namespace unless --no-isolate (the
+    script runs itself again inside it), and ``report`` its summary."""
     if not args.server:
         ap.error("name the rcssserver binary with --server or RCSSSERVER")
     if not args.no_isolate and os.environ.get("CF_RCSS_ISOLATED") != "1":
@@ -395,7 +429,7 @@ def main() -> int:
         subprocess.run(["ip", "link", "set", "lo", "up"], check=True)
     signal.signal(signal.SIGTERM, stop)  # as SIGINT does: the finally clauses stop what the match started
     try:
-        print(json.dumps(run(args)), flush=True)
+        report(run(args, play))
     finally:
         if os.environ.get("CF_RCSS_ISOLATED") == "1":
             kill_namespace_leftovers()

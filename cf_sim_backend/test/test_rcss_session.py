@@ -374,7 +374,9 @@ class TwoBodyCommands(Skill):
 
 
 def replay_acting(skills: list[Skill]) -> tuple[dict[int, list[str]], PlayerSession]:
-    """Feed the synch trace to a session; at each (think) run one step of the current skill."""
+    """Feed the synch trace to a session; at each (think) run one step of the current skill.
+
+    What was sent, by server step (a sense_body each: the clock stands still in some play modes)."""
     session, sent = PlayerSession("PyTest"), {}
     queue = list(skills)
     for direction, msg in read_trace(SYNCH):
@@ -384,8 +386,8 @@ def replay_acting(skills: list[Skill]) -> tuple[dict[int, list[str]], PlayerSess
         if kind == "think":
             if session.skill is None and queue:
                 session.start(queue.pop(0))
-            sent.setdefault(session.belief.time, []).extend(session.act().commands)
-            sent[session.belief.time].extend(session.act().commands)  # a second act in one cycle sends nothing
+            sent.setdefault(session.belief.steps, []).extend(session.act().commands)
+            sent[session.belief.steps].extend(session.act().commands)  # a second act in one step sends nothing
     return sent, session
 
 
@@ -532,6 +534,24 @@ def test_a_move_started_after_a_goal_is_refused_once_the_kick_off_is_called():
         skill_for("move", act.Move(target=AbsolutePositioning(x=-10.0, y=5.0)), Side.LEFT, session.belief.world(), me)
 
 
+def test_while_the_clock_stands_still_each_server_step_takes_a_body_command():
+    """The clock stands still before a kick-off (and after a goal, at an offside or a foul) while the
+    server goes on stepping: a move asked for after this game time's dash still goes out."""
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 play_on)\0")
+    session.receive(b"(sense_body 65 (kick 2) (dash 7) (turn 0) (move 1))")
+    world = session.belief.world()
+    me = world.player(Side.LEFT, 3)
+    session.start(skill_for("dash", act.Dash(power=50.0), Side.LEFT, world, me))
+    assert any(c.startswith("(dash") for c in session.act().commands)
+    session.receive(b"(hear 65 referee before_kick_off)")  # a trainer's call: the clock stops at 65
+    session.receive(b"(sense_body 65 (kick 2) (dash 8) (turn 0) (move 1))")
+    world = session.belief.world()
+    session.start(skill_for("move", act.Move(target=AbsolutePositioning(x=-10.0, y=5.0)), Side.LEFT, world, me))
+    assert session.act().commands[:1] == ["(move -10 -5)"]
+    assert not any(c.startswith(("(move", "(dash")) for c in session.act().commands)  # one a step
+
+
 def test_our_executed_kick_sends_the_believed_ball_off_before_the_next_see():
     """The synch trace: a kick at cycle 21 (executed: the kick counter is 1 at 22), no see at 22."""
     from cf_sim_backend.rcss.trace import _truth
@@ -650,6 +670,7 @@ def test_with_the_ball_lost_the_head_sweeps_round_a_cone_width_a_see_the_way_the
     covered = set()
     for t in range(41, 49):  # a see every other cycle at the normal width: four sees
         b.time = b.sense_time = t
+        b.steps += 1
         session.start(Once(("turn", -57.3), "turn"))
         look(session)
         if t % 2:

@@ -155,6 +155,10 @@ class Belief:
     tackle_expires: int = 0  # cycles our last tackle still holds us (sense_body)
     see_time: int = -1
     sense_time: int = -1
+    # Server steps (one sense_body each): the clock stands still in some play modes (before a
+    # kick-off, after a goal, at an offside or a foul), while the server goes on stepping and
+    # executes one body command of each player a step.
+    steps: int = 0
     errors: list[str] = field(default_factory=list)
     referee_notes: list[str] = field(default_factory=list)  # the latest cards and pauses
     heard: list[tuple[int, int, str]] = field(default_factory=list)  # team-mates' says: (time, number, text)
@@ -262,6 +266,7 @@ class Belief:
 
     def _on_sense_body(self, msg: list) -> None:
         self.time = self.sense_time = int(msg[1])
+        self.steps += 1
         parts = {str(item[0]): item[1:] for item in msg[2:] if isinstance(item, list) and item}
         me = self.me
         if "view_mode" in parts and len(parts["view_mode"]) == 2:

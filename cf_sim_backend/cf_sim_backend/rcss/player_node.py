@@ -89,7 +89,7 @@ class RcssPlayerNode(GuardedNode, Node):
         self.exit_code: int | None = None  # set when the match is over (or the server is gone)
         self.action: ActionService | None = None
         self.synch = False
-        self.cycle_done = -1  # the last cycle acted on
+        self.cycle_done = -1  # the last server step acted on (belief.steps)
         self.waiting = False  # synch mode: perceived this cycle, (done) not yet sent
         self.finished = False
         self.last_heard = time.monotonic()
@@ -266,7 +266,7 @@ class RcssPlayerNode(GuardedNode, Node):
 
     def _cycle(self) -> None:
         self.see_timer.cancel()
-        if self.cycle_done == self.session.belief.time:
+        if self.cycle_done == self.session.belief.steps:
             return
         self._perceive()
         self._act()
@@ -278,7 +278,7 @@ class RcssPlayerNode(GuardedNode, Node):
             self.perception.publish(world_state(self.session.belief))
 
     def _act(self) -> None:
-        self.cycle_done = self.session.belief.time
+        self.cycle_done = self.session.belief.steps
         acted = self.session.act()
         for text in acted.commands:
             self._send(text)

@@ -77,7 +77,7 @@ class PlayerSession:
     version: int = 19
     belief: Belief = field(init=False)
     skill: Skill | None = None
-    acted: int = -1  # the last cycle a body command went out
+    acted: int = -1  # the last server step (belief.steps) a body command went out in
     stats: dict[str, int] = field(
         default_factory=lambda: {"cycles": 0, "body_commands": 0, "executed": 0, "bad_messages": 0}
     )
@@ -263,7 +263,7 @@ class PlayerSession:
         b = self.belief
         if not self.ready or b.mode == "time_over":
             return Acted()  # (after time over the server executes nothing: a command then is only noise)
-        if self.skill is None or self.acted == b.time:
+        if self.skill is None or self.acted == b.steps:
             return Acted(self._look())
         if b.ball is None and self.skill.name in _BALL_SKILLS:
             # The last see showed that the ball is not where we believed: do not play a ball we
@@ -289,7 +289,7 @@ class PlayerSession:
             if cmd[0] in _EXECUTED and cmd[0] in b.counters:
                 self._last_body = (b.time, cmd[0], b.counters[cmd[0]], b.server_mode)
         if body_sent:
-            self.acted = b.time
+            self.acted = b.steps
             self.stats["body_commands"] += 1
         out += self._view()
         if any(text.startswith("(turn_neck") for text in out):

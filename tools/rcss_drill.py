@@ -1,0 +1,205 @@
+"""Drills on a real rcssserver: the same situation of ours again and again against a named opponent,
+and what came of each try.
+
+    python tools/rcss_drill.py --server $RCSSSERVER --opponent HELIOS_base --opponent-cmd "start.sh -t {team}"
+                               [--drill kick-off|free-kick] [--at X Y] [--tries 30] [--window 100] [--out DIR]
+                               (and any option of tools/rcss_match.py)
+
+A match gives our team five or six kick-offs in 2000 cycles; a drill gives one every ~130 cycles.
+The trainer (rcssserver's offline coach) sets each try up: it calls ``before_kick_off`` (both teams
+take their kick-off places), gives every player his stamina back (``recover``), puts the ball on
+the centre spot (a kick-off) or at ``--at X Y`` (a free kick of ours, in our decision's frame: X up
+the field towards their goal, Y to the left of that), and gives us the kick-off or the free kick. The try ends ``--window`` cycles after our first
+kick, at a goal, or when the referee stops play for the other side; then the next is set up.
+Synch mode only (the trainer counts the server's steps). The first try is the referee's own
+kick-off, so heterogeneous player types are handed out as in a match.
+
+The server's game log is read afterwards; per try: our kick taken, the furthest the ball got up
+the field before their first kick, the cycles until that kick, our shots (kicks from within 25 m
+of their goal) and the goals. The table and ``drill.json`` (in --out) are the result.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import sys
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rcss_match import Trainer, launch, parser
+from rcss_series import GOAL_X, kick_events, newest_game_log, read_rcg, side_of
+
+THIRD_X = GOAL_X / 3  # m: their third begins this far into their half
+SHOT_RANGE = 25.0  # m from their goal: a kick of ours from within it counts as a shot (as rcss_series counts)
+SETTLE = 10  # steps in before_kick_off for both teams to take their places
+STEP_WAIT = 30.0  # s without a simulation step: the server is stuck or gone
+TAKE_WAIT = 100  # steps our taker has to kick before the try is given up
+
+
+@dataclass(frozen=True)
+class Try:
+    start: int  # the game time our set piece began
+    taken: bool  # we kicked the ball
+    furthest: float  # m up the field (our frame) the ball got before their first kick (set piece spot if none)
+    kept: int  # cycles from our first kick to theirs (the window's end if none)
+    shots: int  # our kicks from within SHOT_RANGE of their goal
+    goals_for: int
+    goals_against: int
+
+
+def tries_of(frames: list, our_side: str, set_piece: str, starts: list[int]) -> list[Try]:
+    """The tries in ``read_rcg``'s frames: each from our ``set_piece`` (e.g. ``kick_off``) at or after
+    a game time in ``starts`` (when the trainer gave it) to the next try's (the game log does not
+    show the trainer's ``before_kick_off``, and the clock stands still in it)."""
+    fwd = 1.0 if our_side == "l" else -1.0
+    ours = f"{set_piece}_{our_side}"
+    begins = [next((i for i, f in enumerate(frames) if f[0] >= t and f[1] == ours), None) for t in starts]
+    begins = [i for i in begins if i is not None]
+    out = []
+    for n, begin in enumerate(begins):
+        seg = frames[begin : begins[n + 1] if n + 1 < len(begins) else len(frames)]
+        kicks = kick_events(seg)
+        first_ours = next((e for e in kicks if e[1] == our_side), None)
+        first_theirs = next(
+            (e for e in kicks if e[1] != our_side and (first_ours is None or e[0] > first_ours[0])), None
+        )
+        upto = first_theirs[0] if first_theirs is not None else len(seg) - 1
+        furthest = max(fwd * f[2][0] for f in seg[: upto + 1])
+        kept = 0
+        if first_ours is not None:
+            kept = seg[upto][0] - seg[first_ours[0]][0]
+        goal_x = fwd * GOAL_X
+        shots = sum(
+            1 for _, side, _, x, y in kicks if side == our_side and ((goal_x - x) ** 2 + y**2) ** 0.5 < SHOT_RANGE
+        )
+        modes = {f[1] for f in seg}
+        them = "r" if our_side == "l" else "l"
+        out.append(
+            Try(
+                start=seg[0][0],
+                taken=first_ours is not None,
+                furthest=round(furthest, 1),
+                kept=kept,
+                shots=shots,
+                goals_for=int(f"goal_{our_side}" in modes),
+                goals_against=int(f"goal_{them}" in modes),
+            )
+        )
+    return out
+
+
+def table(tries: list[Try], title: str) -> str:
+    """One row for the drill: counts over the tries taken, medians of how far and how long."""
+    taken = [t for t in tries if t.taken]
+    if not taken:
+        return f"{title}: no try taken of {len(tries)}"
+    far = [t.furthest for t in taken]
+    rows = [
+        f"{title}: {len(taken)} tries taken of {len(tries)}",
+        "",
+        "| goals | tries with a shot | shots | into their third | beyond 30 m | furthest (median) | kept, cycles (median) |",
+        "|---:|---:|---:|---:|---:|---:|---:|",
+        f"| {sum(t.goals_for for t in taken)}:{sum(t.goals_against for t in taken)}"
+        f" | {sum(t.shots > 0 for t in taken)} | {sum(t.shots for t in taken)}"
+        f" | {sum(f > THIRD_X for f in far)} | {sum(f > 30.0 for f in far)}"
+        f" | {statistics.median(far):.1f} m | {statistics.median(t.kept for t in taken):.0f} |",
+    ]
+    return "\n".join(rows)
+
+
+def set_up(trainer: Trainer, args: argparse.Namespace) -> None:
+    """Both teams to their kick-off places, stamina back, the ball placed, our set piece given."""
+    trainer.send("(change_mode before_kick_off)")
+    wait_steps(trainer, SETTLE)
+    trainer.send("(recover)")
+    x, y = args.at if args.drill == "free-kick" else (0.0, 0.0)
+    trainer.send(f"(move (ball) {x} {-y} 0 0 0)")  # we are the left side; the server's y runs the other way
+    trainer.send(f"(change_mode {MODES[args.drill]}_l)")
+
+
+MODES = {"kick-off": "kick_off", "free-kick": "free_kick"}
+
+
+def wait_steps(trainer: Trainer, steps: int, until=lambda: False) -> None:
+    """Answer the server for ``steps`` simulation steps, or until ``until()``."""
+    end, stuck = trainer.thinks + steps, time.monotonic() + STEP_WAIT
+    while trainer.thinks < end and not until():
+        seen = trainer.thinks
+        trainer.poll()
+        if trainer.thinks > seen:
+            stuck = time.monotonic() + STEP_WAIT
+        elif time.monotonic() > stuck:
+            raise RuntimeError(f"the server sent no step for {STEP_WAIT} s (at game time {trainer.time})")
+
+
+def drill(args: argparse.Namespace, trainer: Trainer, server, team_procs: list, summary: dict) -> None:
+    """Play ``args.tries`` tries, one after the other, then call time over."""
+    trainer.send("(eye on)")  # the server sends the trainer (think) only with its eye on, and then waits for it
+    for _ in range(70):  # the decisions find their providers; the coaches choose types (as a match waits)
+        trainer.poll()
+    started, set_piece = time.monotonic(), f"{MODES[args.drill]}_l"
+    summary["starts"] = starts = []  # the game time of each try's set piece
+    for n in range(args.tries):
+        if n == 0 and args.drill == "kick-off":
+            trainer.send("(start)")  # the referee's kick-off: heterogeneous types handed out
+        else:
+            if n == 0:  # the referee's kick-off first (types), then straight to the free kick
+                trainer.send("(start)")
+                wait_steps(trainer, 2)
+            set_up(trainer, args)
+        wait_steps(trainer, 3)
+        starts.append(trainer.time)
+        wait_steps(trainer, TAKE_WAIT, lambda: trainer.mode != set_piece)
+        wait_steps(trainer, args.window, lambda: trainer.mode.startswith("goal_") or ended_for_them(trainer.mode))
+        wait_steps(trainer, 2)  # the goal or the stop into the game log
+        if server.poll() is not None:
+            raise RuntimeError(f"rcssserver exited with {server.returncode}: see {summary['out']}/server.log")
+        if time.monotonic() - started > args.timeout:
+            raise RuntimeError(f"the drill did not end in {args.timeout} s (try {n + 1})")
+    trainer.send("(eye off)")  # the server no longer waits for us
+    trainer.send("(change_mode time_over)")
+    summary["seconds"] = round(time.monotonic() - started, 1)
+
+
+def ended_for_them(mode: str) -> bool:
+    """The referee stopped play and gave the ball to the other side (we are the left team)."""
+    return mode.endswith("_r") and not mode.startswith("goal_")
+
+
+def main() -> int:
+    ap = parser(__doc__.split("\n\n")[0])
+    ap.add_argument("--drill", choices=tuple(MODES), default="kick-off")
+    ap.add_argument("--at", type=float, nargs=2, default=(30.0, -20.0), metavar=("X", "Y"), help="free kick spot")
+    ap.add_argument("--tries", type=int, default=30)
+    ap.add_argument("--window", type=int, default=100, help="cycles a try runs after our first kick")
+    ap.set_defaults(timeout=3600.0, game_log=True)
+    args = ap.parse_args()
+    if args.realtime:
+        ap.error("drills run in synch mode")
+    if args.tries < 1 or args.window < 1:
+        ap.error("--tries and --window must be positive")
+    args.game_log, args.halves, args.kick_off = True, 1, "referee"
+    args.cycles = 10 * (args.tries * (args.window + TAKE_WAIT) // 10 + 100)  # no half time within the drill
+
+    def report(summary: dict) -> None:
+        out = Path(summary["out"])
+        rcg = newest_game_log(out)
+        if rcg is None:
+            raise RuntimeError(f"no game log in {out}")
+        side = side_of(rcg, args.team)
+        tries = tries_of(read_rcg(rcg), side, MODES[args.drill], summary["starts"])
+        where = "" if args.drill == "kick-off" else f" at ({args.at[0]:g}, {args.at[1]:g})"
+        print(table(tries, f"our {args.drill}{where} against {args.opponent}"), flush=True)
+        result = {"drill": args.drill, "at": list(args.at), "tries": [asdict(t) for t in tries], **summary}
+        result.pop("players", None)
+        (out / "drill.json").write_text(json.dumps(result, indent=1))
+
+    return launch(ap, args, drill, report)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
