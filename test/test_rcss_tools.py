@@ -635,13 +635,14 @@ def drill_frames() -> list:
     """Two kick-off tries as a drill's game log holds them (the trainer's before_kick_off is not logged).
 
     Everyone stands at the ball. Try 1 (given at game time 1): CF 10 kicks off at 2, CF 9 kicks at
-    x 28.5 and again at 30 (24 and 22.5 m from their goal: two shots), PYRUS 3 kicks at 33; goal_l at 40. Try 2
+    x 28.5 and again at 30 (24 and 22.5 m from their goal: two shots), PYRUS 3 kicks at 33, CF 9 wins
+    it back at 36 (a third shot); goal_l at 40. Try 2
     (given at 40, the clock standing still there; it begins at 41): CF 10 kicks off at 42, PYRUS 3
     takes it at 45 at x 4; goal_r at 60.
     """
     kicks = {("l", 9): 0, ("l", 10): 0, ("r", 3): 0}
     frames, ball = [], 0.0
-    touches = {2: ("l", 10), 20: ("l", 9), 30: ("l", 9), 33: ("r", 3), 42: ("l", 10), 45: ("r", 3)}
+    touches = {2: ("l", 10), 20: ("l", 9), 30: ("l", 9), 33: ("r", 3), 36: ("l", 9), 42: ("l", 10), 45: ("r", 3)}
     for t in range(1, 61):
         mode = "kick_off_l" if t in (1, 41) else "goal_l" if t == 40 else "goal_r" if t == 60 else "play_on"
         if t in touches:
@@ -656,10 +657,10 @@ def drill_frames() -> list:
 def test_a_drill_is_cut_into_its_tries_by_the_set_pieces_the_trainer_gave():
     tries = tries_of(drill_frames(), "l", "kick_off", [1, 40])
     assert tries == [
-        Try(start=1, taken=True, furthest=30.0, kept=31, shots=2, goals_for=1, goals_against=0),
-        Try(start=41, taken=True, furthest=4.0, kept=3, shots=0, goals_for=0, goals_against=1),
+        Try(start=1, taken=True, furthest=30.0, kept=31, shots=3, won_there=1, goals_for=1, goals_against=0),
+        Try(start=41, taken=True, furthest=4.0, kept=3, shots=0, won_there=0, goals_for=0, goals_against=1),
     ]
     text = drill_table(tries, "our kick-off")
-    assert "| 1:1 | 1 | 2 | 1 | 0 |" in text and "2 tries taken of 2" in text
+    assert "| 1:1 | 1 | 3 | 1 | 0 | 17.0 m | 17 | 1 |" in text and "2 tries taken of 2" in text
     # Seen from the other side, the same log has no kick-off of "ours".
     assert tries_of(drill_frames(), "r", "kick_off", [1, 40]) == []

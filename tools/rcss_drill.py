@@ -16,12 +16,13 @@ kick-off, so heterogeneous player types are handed out as in a match.
 
 The server's game log is read afterwards; per try: our kick taken, the furthest the ball got up
 the field before their first kick, the cycles until that kick, our shots (kicks from within 25 m
-of their goal) and the goals. The table and ``drill.json`` (in --out) are the result.
+of their goal), the balls we won back in their third and the goals. The table and ``drill.json`` (in --out) are the result.
 """
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import statistics
 import sys
@@ -47,6 +48,7 @@ class Try:
     furthest: float  # m up the field (our frame) the ball got before their first kick (set piece spot if none)
     kept: int  # cycles from our first kick to theirs (the window's end if none)
     shots: int  # our kicks from within SHOT_RANGE of their goal
+    won_there: int  # balls we won in their third (a kick of ours there right after one of theirs)
     goals_for: int
     goals_against: int
 
@@ -76,6 +78,9 @@ def tries_of(frames: list, our_side: str, set_piece: str, starts: list[int]) -> 
         shots = sum(
             1 for _, side, _, x, y in kicks if side == our_side and ((goal_x - x) ** 2 + y**2) ** 0.5 < SHOT_RANGE
         )
+        won_there = sum(
+            1 for a, b in itertools.pairwise(kicks) if a[1] != our_side and b[1] == our_side and fwd * b[3] > THIRD_X
+        )
         modes = {f[1] for f in seg}
         them = "r" if our_side == "l" else "l"
         out.append(
@@ -85,6 +90,7 @@ def tries_of(frames: list, our_side: str, set_piece: str, starts: list[int]) -> 
                 furthest=round(furthest, 1),
                 kept=kept,
                 shots=shots,
+                won_there=won_there,
                 goals_for=int(f"goal_{our_side}" in modes),
                 goals_against=int(f"goal_{them}" in modes),
             )
@@ -101,12 +107,14 @@ def table(tries: list[Try], title: str) -> str:
     rows = [
         f"{title}: {len(taken)} tries taken of {len(tries)}",
         "",
-        "| goals | tries with a shot | shots | into their third | beyond 30 m | furthest (median) | kept, cycles (median) |",
-        "|---:|---:|---:|---:|---:|---:|---:|",
+        "| goals | tries with a shot | shots | into their third | beyond 30 m | furthest (median)"
+        " | kept, cycles (median) | won in their third |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|",
         f"| {sum(t.goals_for for t in taken)}:{sum(t.goals_against for t in taken)}"
         f" | {sum(t.shots > 0 for t in taken)} | {sum(t.shots for t in taken)}"
         f" | {sum(f > THIRD_X for f in far)} | {sum(f > 30.0 for f in far)}"
-        f" | {statistics.median(far):.1f} m | {statistics.median(t.kept for t in taken):.0f} |",
+        f" | {statistics.median(far):.1f} m | {statistics.median(t.kept for t in taken):.0f}"
+        f" | {sum(t.won_there for t in taken)} |",
     ]
     return "\n".join(rows)
 
