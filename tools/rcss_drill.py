@@ -36,6 +36,7 @@ from rcss_series import GOAL_X, kick_events, newest_game_log, read_rcg, side_of
 
 THIRD_X = GOAL_X / 3  # m: their third begins this far into their half
 SHOT_RANGE = 25.0  # m from their goal: a kick of ours from within it counts as a shot (as rcss_series counts)
+MODES = {"kick-off": "kick_off", "free-kick": "free_kick"}  # the drill -> our set piece's play mode
 SETTLE = 10  # steps in before_kick_off for both teams to take their places
 STEP_WAIT = 30.0  # s without a simulation step: the server is stuck or gone
 TAKE_WAIT = 100  # steps our taker has to kick before the try is given up
@@ -129,9 +130,6 @@ def set_up(trainer: Trainer, args: argparse.Namespace) -> None:
     trainer.send(f"(change_mode {MODES[args.drill]}_l)")
 
 
-MODES = {"kick-off": "kick_off", "free-kick": "free_kick"}
-
-
 def wait_steps(trainer: Trainer, steps: int, until=lambda: False) -> None:
     """Answer the server for ``steps`` simulation steps, or until ``until()``."""
     end, stuck = trainer.thinks + steps, time.monotonic() + STEP_WAIT
@@ -159,8 +157,8 @@ def drill(args: argparse.Namespace, trainer: Trainer, server, team_procs: list, 
                 trainer.send("(start)")
                 wait_steps(trainer, 2)
             set_up(trainer, args)
+        starts.append(trainer.time)  # (the clock stood still in before_kick_off: the set piece's time)
         wait_steps(trainer, 3)
-        starts.append(trainer.time)
         wait_steps(trainer, TAKE_WAIT, lambda: trainer.mode != set_piece)
         wait_steps(trainer, args.window, lambda: trainer.mode.startswith("goal_") or ended_for_them(trainer.mode))
         wait_steps(trainer, 2)  # the goal or the stop into the game log
