@@ -636,9 +636,8 @@ def drill_frames() -> list:
 
     Everyone stands at the ball. Try 1 (given at game time 1): CF 10 kicks off at 2, CF 9 kicks at
     x 28.5 and again at 30 (24 and 22.5 m from their goal: two shots), PYRUS 3 kicks at 33, CF 9 wins
-    it back at 36 (a third shot); goal_l at 40. Try 2
-    (given at 40, the clock standing still there; it begins at 41): CF 10 kicks off at 42, PYRUS 3
-    takes it at 45 at x 4; goal_r at 60.
+    it back at 36 (a third shot); goal_l at 40. Try 2 (given at 40, the clock standing still there;
+    it begins at 41): CF 10 kicks off at 42, PYRUS 3 takes it at 45 at x 4; goal_r at 60.
     """
     kicks = {("l", 9): 0, ("l", 10): 0, ("r", 3): 0}
     frames, ball = [], 0.0

@@ -5,18 +5,20 @@ and what came of each try.
                                [--drill kick-off|free-kick] [--at X Y] [--tries 30] [--window 100] [--out DIR]
                                (and any option of tools/rcss_match.py)
 
-A match gives our team five or six kick-offs in 2000 cycles; a drill gives one every ~130 cycles.
+A match gives our team five or six kick-offs in 2000 cycles; a drill gives one every ~110 cycles.
 The trainer (rcssserver's offline coach) sets each try up: it calls ``before_kick_off`` (both teams
 take their kick-off places), gives every player his stamina back (``recover``), puts the ball on
 the centre spot (a kick-off) or at ``--at X Y`` (a free kick of ours, in our decision's frame: X up
-the field towards their goal, Y to the left of that), and gives us the kick-off or the free kick. The try ends ``--window`` cycles after our first
-kick, at a goal, or when the referee stops play for the other side; then the next is set up.
+the field towards their goal, Y to the left of that), and gives us the kick-off or the free kick.
+The try ends ``--window`` cycles after our first kick, at a goal, or when the referee stops play
+for the other side; then the next is set up.
 Synch mode only (the trainer counts the server's steps). The first try is the referee's own
 kick-off, so heterogeneous player types are handed out as in a match.
 
 The server's game log is read afterwards; per try: our kick taken, the furthest the ball got up
 the field before their first kick, the cycles until that kick, our shots (kicks from within 25 m
-of their goal), the balls we won back in their third and the goals. The table and ``drill.json`` (in --out) are the result.
+of their goal, as ``rcss_series`` counts them), the balls we won back in their third and the goals.
+The table and ``drill.json`` (in --out) are the result.
 """
 
 from __future__ import annotations
@@ -31,11 +33,9 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_match import Trainer, launch, parser
-from rcss_series import GOAL_X, kick_events, newest_game_log, read_rcg, side_of
+from rcss_match import Trainer, kick_off, launch, parser
+from rcss_series import THIRD, kick_events, newest_game_log, read_rcg, shots_of, side_of
 
-THIRD_X = GOAL_X / 3  # m: their third begins this far into their half
-SHOT_RANGE = 25.0  # m from their goal: a kick of ours from within it counts as a shot (as rcss_series counts)
 MODES = {"kick-off": "kick_off", "free-kick": "free_kick"}  # the drill -> our set piece's play mode
 SETTLE = 10  # steps in before_kick_off for both teams to take their places
 STEP_WAIT = 30.0  # s without a simulation step: the server is stuck or gone
@@ -48,7 +48,7 @@ class Try:
     taken: bool  # we kicked the ball
     furthest: float  # m up the field (our frame) the ball got before their first kick (set piece spot if none)
     kept: int  # cycles from our first kick to theirs (the window's end if none)
-    shots: int  # our kicks from within SHOT_RANGE of their goal
+    shots: int  # our kicks from within 25 m of their goal (rcss_series.shots_of)
     won_there: int  # balls we won in their third (a kick of ours there right after one of theirs)
     goals_for: int
     goals_against: int
@@ -75,12 +75,8 @@ def tries_of(frames: list, our_side: str, set_piece: str, starts: list[int]) -> 
         kept = 0
         if first_ours is not None:
             kept = seg[upto][0] - seg[first_ours[0]][0]
-        goal_x = fwd * GOAL_X
-        shots = sum(
-            1 for _, side, _, x, y in kicks if side == our_side and ((goal_x - x) ** 2 + y**2) ** 0.5 < SHOT_RANGE
-        )
         won_there = sum(
-            1 for a, b in itertools.pairwise(kicks) if a[1] != our_side and b[1] == our_side and fwd * b[3] > THIRD_X
+            1 for a, b in itertools.pairwise(kicks) if a[1] != our_side and b[1] == our_side and fwd * b[3] > THIRD
         )
         modes = {f[1] for f in seg}
         them = "r" if our_side == "l" else "l"
@@ -90,7 +86,7 @@ def tries_of(frames: list, our_side: str, set_piece: str, starts: list[int]) -> 
                 taken=first_ours is not None,
                 furthest=round(furthest, 1),
                 kept=kept,
-                shots=shots,
+                shots=shots_of(seg)[our_side],
                 won_there=won_there,
                 goals_for=int(f"goal_{our_side}" in modes),
                 goals_against=int(f"goal_{them}" in modes),
@@ -113,7 +109,7 @@ def table(tries: list[Try], title: str) -> str:
         "|---:|---:|---:|---:|---:|---:|---:|---:|",
         f"| {sum(t.goals_for for t in taken)}:{sum(t.goals_against for t in taken)}"
         f" | {sum(t.shots > 0 for t in taken)} | {sum(t.shots for t in taken)}"
-        f" | {sum(f > THIRD_X for f in far)} | {sum(f > 30.0 for f in far)}"
+        f" | {sum(f > THIRD for f in far)} | {sum(f > 30.0 for f in far)}"
         f" | {statistics.median(far):.1f} m | {statistics.median(t.kept for t in taken):.0f}"
         f" | {sum(t.won_there for t in taken)} |",
     ]
@@ -145,16 +141,12 @@ def wait_steps(trainer: Trainer, steps: int, until=lambda: False) -> None:
 def drill(args: argparse.Namespace, trainer: Trainer, server, team_procs: list, summary: dict) -> None:
     """Play ``args.tries`` tries, one after the other, then call time over."""
     trainer.send("(eye on)")  # the server sends the trainer (think) only with its eye on, and then waits for it
-    for _ in range(70):  # the decisions find their providers; the coaches choose types (as a match waits)
-        trainer.poll()
+    kick_off(args, trainer)  # the referee's, as a match's: heterogeneous types handed out; the first kick-off try
     started, set_piece = time.monotonic(), f"{MODES[args.drill]}_l"
     summary["starts"] = starts = []  # the game time of each try's set piece
     for n in range(args.tries):
-        if n == 0 and args.drill == "kick-off":
-            trainer.send("(start)")  # the referee's kick-off: heterogeneous types handed out
-        else:
-            if n == 0:  # the referee's kick-off first (types), then straight to the free kick
-                trainer.send("(start)")
+        if n > 0 or args.drill != "kick-off":
+            if n == 0:  # straight from the referee's kick-off to the first free kick
                 wait_steps(trainer, 2)
             set_up(trainer, args)
         starts.append(trainer.time)  # (the clock stood still in before_kick_off: the set piece's time)

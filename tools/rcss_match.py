@@ -290,12 +290,9 @@ def run(args: argparse.Namespace, play: Play | None = None) -> dict:
     return summary
 
 
-def play_match(
-    args: argparse.Namespace, trainer: Trainer, server: subprocess.Popen, team_procs: list, summary: dict
-) -> None:
-    """Kick off once everyone is up, play until time over, and put our CPU per cycle and the team's exit in ``summary``."""
-    t0 = time.monotonic()
-    for _ in range(30):  # let the decisions find their providers and move into formation
+def kick_off(args: argparse.Namespace, trainer: Trainer) -> None:
+    """Once everyone is up: give the decisions time to find their providers and move into formation, then kick off."""
+    for _ in range(30):
         trainer.poll()
     if args.kick_off == "referee":
         # The referee's kick-off (what a monitor's button sends) gives every player no coach has
@@ -305,6 +302,14 @@ def play_match(
         trainer.send("(start)")
     else:
         trainer.send("(change_mode kick_off_l)")
+
+
+def play_match(
+    args: argparse.Namespace, trainer: Trainer, server: subprocess.Popen, team_procs: list, summary: dict
+) -> None:
+    """Kick off once everyone is up, play until time over, and put our CPU per cycle and the team's exit in ``summary``."""
+    t0 = time.monotonic()
+    kick_off(args, trainer)
     meter = CpuMeter(team_procs[0].pid)  # our team: its ComMAg, adapters, decisions, relaunches
     meter.start()
     sampled, start_cycle = time.monotonic(), trainer.time
