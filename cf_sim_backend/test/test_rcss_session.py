@@ -342,6 +342,20 @@ def test_a_move_before_kick_off_places_a_right_player_in_its_own_half():
     assert (b.me.x, b.me.y) == (20.0, -5.0)  # the server mirrors the right team's move
 
 
+def test_in_a_pause_a_command_the_server_did_not_execute_in_two_steps_is_dropped():
+    """The clock stands still at 0 before the kick-off; the server steps on. A move lost there is not
+    applied when some later move of ours (asked for elsewhere, never sent through here) is counted."""
+    b = _belief()
+    b.update(parse("(sense_body 0 (speed 0 0) (head_angle 0) (move 0))"))
+    x = b.me.x
+    b.sent(parse("(move -20 5)"))
+    for _ in range(3):
+        b.update(parse("(sense_body 0 (speed 0 0) (head_angle 0) (move 0))"))
+    assert not b.pending
+    b.update(parse("(sense_body 0 (speed 0 0) (head_angle 0) (move 1))"))
+    assert b.me.x == x
+
+
 def test_turns_and_moves_count_only_once_the_server_executed_them():
     b = _belief()
     b.update(parse("(sense_body 3 (speed 0 0) (head_angle 0) (turn 2) (move 1))"))
@@ -552,6 +566,23 @@ def test_while_the_clock_stands_still_each_server_step_takes_a_body_command():
     assert not any(c.startswith(("(move", "(dash")) for c in session.act().commands)  # one a step
 
 
+def test_while_the_clock_stands_still_the_head_looks_round_at_each_see():
+    """Before a kick-off the server steps and shows a see every other step, all at one game time:
+    the head swings to the other side of the ball at each, as it does in play (it turned once, then stood)."""
+    session = PlayerSession("CF")
+    session.receive(b"(init l 3 before_kick_off)\0")
+    neck, heads = 0.0, []
+    for step in range(6):
+        session.receive(f"(sense_body 0 (view_mode high normal) (head_angle {neck:g}) (turn_neck {step}))".encode())
+        if step % 2 == 0:
+            session.receive(f"(see 0 {SEE_CENTRE} ((b) 10 20))".encode())
+        turns = [c for c in session.act().commands if c.startswith("(turn_neck")]
+        assert len(turns) == (1 if step % 2 == 0 else 0)  # one each see; the head stays between them
+        neck += sum(float(t[len("(turn_neck ") : -1]) for t in turns)
+        heads.append(round(session.belief.me.body + neck))
+    assert heads[0] != heads[2] and heads[0] == heads[4]  # one side of the ball, the other, back
+
+
 def test_our_executed_kick_sends_the_believed_ball_off_before_the_next_see():
     """The synch trace: a kick at cycle 21 (executed: the kick counter is 1 at 22), no see at 22."""
     from cf_sim_backend.rcss.trace import _truth
@@ -642,6 +673,15 @@ def test_while_our_tackle_holds_us_nothing_is_sent():
     assert session.stats.get("unexecuted_dash", 0) == 0
 
 
+def next_step(b: Belief, t: int, seen: bool = False) -> None:
+    """The server's next step, at game time ``t``, as its sense_body (and, if ``seen``, its see) would leave the belief."""
+    b.time = b.sense_time = t
+    b.steps += 1
+    if seen:
+        b.see_time = t
+        b.sees += 1
+
+
 def test_the_head_sweeps_round_the_ball_a_see_at_a_time_and_the_field_without_one():
     session = PlayerSession("CF")
     session.receive(b"(init l 3 play_on)\0")
@@ -657,7 +697,7 @@ def test_the_head_sweeps_round_the_ball_a_see_at_a_time_and_the_field_without_on
         (turn,) = first
         b.me.neck += float(turn[len("(turn_neck ") : -1])
         heads.append(round(b.me.head))
-        b.time = b.see_time = t + 2
+        next_step(b, t + 2, seen=True)
     assert heads == [5, 85, 5]  # the ball (at 45) stays 40 degrees inside a 120-degree cone, left then right
 
 
@@ -669,12 +709,12 @@ def test_with_the_ball_lost_the_head_sweeps_round_a_cone_width_a_see_the_way_the
     b.ball = None  # lost: the decision turns the body a radian a cycle to look for it
     covered = set()
     for t in range(41, 49):  # a see every other cycle at the normal width: four sees
-        b.time = b.sense_time = t
-        b.steps += 1
+        next_step(b, t)
         session.start(Once(("turn", -57.3), "turn"))
         look(session)
         if t % 2:
             b.see_time = t
+            b.sees += 1
             covered |= {round(norm_deg(b.me.head + a)) for a in range(-60, 61)}
     # Four sees of a 120-degree cone see all round. Swinging the neck from limit to limit while the
     # body turned left 47 degrees unseen after four sees, and 5 after six.
@@ -708,7 +748,7 @@ def test_near_the_ball_the_view_narrows_to_a_see_every_cycle_and_the_head_keeps_
     b = session.belief
     b.ball = Track(8.0, 8.0, 0.0, 0.0, 0.1, 40)  # 11 m off, 45 degrees off our body: between the two widths
     assert not any("change_view" in c for c in session.act().commands)
-    b.time = 41
+    next_step(b, 41)
     b.ball = Track(6.0, 6.0, 0.0, 0.0, 0.1, 40)  # 8.5 m: watch it every cycle
     view, neck = session.act().commands
     assert view == "(change_view narrow)" and well_formed(view)
@@ -719,7 +759,7 @@ def test_near_the_ball_the_view_narrows_to_a_see_every_cycle_and_the_head_keeps_
     assert b.me.view_width == "narrow" and b.expects_see()  # a see every cycle now
     b.ball = Track(9.0, 9.0, 0.0, 0.0, 0.1, 40)  # 12.7 m: inside the gap, stays narrow
     assert not any("change_view" in c for c in session.act().commands)
-    b.time = 43
+    next_step(b, 43)
     b.ball = Track(20.0, 20.0, 0.0, 0.0, 0.1, 40)  # far: the wider cone, every other cycle
     assert session.act().commands[0] == "(change_view normal)"
 
@@ -732,7 +772,7 @@ def test_with_the_ball_at_its_feet_the_head_looks_round_the_player_a_cone_width_
     b.ball = Track(0.5, 0.3, 0.0, 0.0, 0.1, 40)  # at our feet: seen within 3 m wherever we look
     necks = []
     for t in (41, 42, 43, 44):
-        b.time = b.see_time = t
+        next_step(b, t, seen=True)
         commands = [c for c in session.act().commands if c.startswith("(turn_neck")]
         b.me.neck += float(commands[0][len("(turn_neck ") : -1]) if commands else 0.0
         necks.append(round(b.me.neck))
@@ -740,7 +780,7 @@ def test_with_the_ball_at_its_feet_the_head_looks_round_the_player_a_cone_width_
     assert necks[3] == necks[0] and sorted(necks[:3]) == [-60, 0, 60]
     b.ball = Track(3.0, 3.0, 0.0, 0.0, 0.1, 44)  # 4 m off: the head goes back to the ball
     for t in (45, 46):
-        b.time = b.see_time = t
+        next_step(b, t, seen=True)
         commands = [c for c in session.act().commands if c.startswith("(turn_neck")]
         b.me.neck += float(commands[0][len("(turn_neck ") : -1]) if commands else 0.0
         assert abs(abs(45.0 - b.me.head) - 15.0) < 1.0  # 15 degrees off the ball, inside the narrow cone
@@ -765,7 +805,7 @@ def test_going_for_a_rolling_ball_every_other_see_looks_upfield_until_it_is_clos
     session.start(Intercept(52.5, 0.0))
     heads, seen = [], 41  # the see at 41 showed it
     for t in (41, 42, 43):
-        b.time = b.see_time = t
+        next_step(b, t, seen=True)
         b.ball.seen = seen
         look(session)
         heads.append(round(b.me.head))
@@ -773,19 +813,20 @@ def test_going_for_a_rolling_ball_every_other_see_looks_upfield_until_it_is_clos
     assert heads[0] == 0  # towards their goal, away from the ball at 90
     assert abs(heads[1] - 90) <= 15 and heads[2] == 0  # back to the ball, then upfield again
     b.ball = Track(0.0, 3.0, 0.0, -1.5, 0.1, 43)  # two cycles off: the head stays on the ball
-    b.time = b.see_time = 44
+    next_step(b, 44, seen=True)
     b.ball.seen = 44
     look(session)
     assert abs(b.me.head - 90.0) <= 15.0
     session.start(None)  # not going for it: the usual look, near the ball
     b.ball = Track(0.0, 12.0, 0.0, -1.5, 0.1, 44)
-    b.time = b.see_time = 45
+    next_step(b, 45, seen=True)
     b.ball.seen = 45
     look(session)
     assert abs(b.me.head - 90.0) <= 15.0
     session.goalie = True  # the goalkeeper going for a ball (a shot, maybe) keeps his eyes on it
     session.start(Intercept(52.5, 0.0))
-    b.time = b.see_time = b.ball.seen = 46
+    next_step(b, 46, seen=True)
+    b.ball.seen = 46
     look(session)
     assert abs(b.me.head - 90.0) <= 15.0
 

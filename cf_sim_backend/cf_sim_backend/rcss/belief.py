@@ -159,11 +159,12 @@ class Belief:
     # kick-off, after a goal, at an offside or a foul), while the server goes on stepping and
     # executes one body command of each player a step.
     steps: int = 0
+    sees: int = 0  # sees read (in a pause they come with the same time, as the sense_bodies do)
     errors: list[str] = field(default_factory=list)
     referee_notes: list[str] = field(default_factory=list)  # the latest cards and pauses
     heard: list[tuple[int, int, str]] = field(default_factory=list)  # team-mates' says: (time, number, text)
-    # Turns, moves and kicks we sent, by command: (the server's counter of it when sent, the sense_body
-    # cycle then, its effect). Applied once a sense_body's counter shows the server executed it.
+    # Turns, moves and kicks we sent, by command: (the server's counter of it when sent, the server
+    # step then, its effect). Applied once a sense_body's counter shows the server executed it.
     pending: dict[str, tuple[int | None, int, tuple[float, ...]]] = field(default_factory=dict)
 
     # ---- reading the server ---------------------------------------------------
@@ -317,7 +318,7 @@ class Belief:
                     self._kicked(*effect)
                 else:  # move
                     me.x, me.y, me.vx, me.vy = effect[0], effect[1], 0.0, 0.0
-            elif self.sense_time > sent_at + 1:  # two sense_bodies without it: the server dropped it
+            elif self.steps > sent_at + 1:  # two sense_bodies without it: the server dropped it
                 del self.pending[kind]
 
     def _roll_on(self, collided: set[str] | None = None) -> None:
@@ -358,6 +359,7 @@ class Belief:
     def _on_see(self, msg: list) -> None:
         see = read_see(msg)
         self.time = self.see_time = see.time
+        self.sees += 1
         me = self.me
         pose = localise(see.flags())
         if pose is not None:
@@ -445,7 +447,7 @@ class Belief:
             effect = self._kick_accel(float(msg[1]), float(msg[2]))
         else:
             return
-        self.pending[kind] = (self.counters.get(kind), self.sense_time, effect)
+        self.pending[kind] = (self.counters.get(kind), self.steps, effect)
 
     def _kick_accel(self, power: float, direction: float) -> tuple[float, float]:
         """The ball's acceleration (server frame) a kick gives, as rcssserver computes it without noise."""

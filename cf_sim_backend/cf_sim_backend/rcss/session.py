@@ -86,12 +86,13 @@ class PlayerSession:
     # checked at the next cycle's sense_body, so a benchmark can tell which commands did not run.
     _last_body: tuple[int, str, int, str] | None = field(default=None, init=False)
     unexecuted: list[str] = field(default_factory=list)  # the latest ten, for a benchmark's report
-    _scan_see: int = field(default=-1, init=False)  # the see the head's scan last swung at
+    _scan_see: int = field(default=-1, init=False)  # the see (belief.sees) the head's scan last swung at
     _scan_side: int = field(default=1, init=False)
     _scan_turn: int = field(default=0, init=False)  # counts sees: the phase of the look round
     _sweep: float | None = field(default=None, init=False)  # no ball believed: where the head's sweep has got to
-    _necked: int = field(default=-1, init=False)  # the last cycle a turn_neck went out
-    _viewed: int = field(default=-1, init=False)  # the last cycle a change_view went out
+    # The last server step (belief.steps) a turn_neck, a change_view went out in: one of each a step.
+    _necked: int = field(default=-1, init=False)
+    _viewed: int = field(default=-1, init=False)
     view: str = "normal"  # the view width the next see comes with (asked for; the server confirms in sense_body)
     to_say: str | None = None  # a say asked for, sent with the next cycle's commands (one a cycle)
 
@@ -155,8 +156,8 @@ class PlayerSession:
         not, or the other way round. Further off, the wider cone every other cycle sees more players.
         """
         b, me = self.belief, self.belief.me
-        if self._viewed == b.time:
-            return []  # asked already this cycle
+        if self._viewed == b.steps:
+            return []  # asked already this step
         self.view = me.view_width if me.view_width in HALF_VIEW else "normal"
         if me.localised < 0 or b.mode == "before_kick_off":
             return []
@@ -164,7 +165,7 @@ class PlayerSession:
         want = "narrow" if d <= NARROW_WITHIN else "normal" if d > NORMAL_BEYOND else self.view
         if want == self.view:
             return []
-        self._viewed, self.view = b.time, want
+        self._viewed, self.view = b.steps, want
         return [f"(change_view {want})"]
 
     def _scan(self) -> list[str]:
@@ -177,13 +178,13 @@ class PlayerSession:
         opponents the player has seen lately.
         """
         b, me = self.belief, self.belief.me
-        if self._necked == b.time or me.localised < 0:
-            return []  # one turn_neck a cycle, and none before we know where we look
-        new_see = b.see_time != self._scan_see
+        if self._necked == b.steps or me.localised < 0:
+            return []  # one turn_neck a step, and none before we know where we look
+        new_see = b.sees != self._scan_see
         if new_see:
-            self._scan_see, self._scan_side, self._scan_turn = b.see_time, -self._scan_side, self._scan_turn + 1
+            self._scan_see, self._scan_side, self._scan_turn = b.sees, -self._scan_side, self._scan_turn + 1
         pending = b.pending.get("turn")
-        turning = pending[2][0] if pending is not None and pending[1] == b.sense_time else 0.0
+        turning = pending[2][0] if pending is not None and pending[1] == b.steps else 0.0
         body = norm_deg(me.body + turning)  # this cycle's turn moves the body the neck is on
         half = HALF_VIEW.get(self.view, 60.0)
         if b.ball is not None:
@@ -217,7 +218,7 @@ class PlayerSession:
         turn = neck - me.neck
         if abs(turn) < 1.0:
             return []
-        self._necked = b.time
+        self._necked = b.steps
         return [f"(turn_neck {_n(turn)})"]
 
     def _receiving(self) -> bool:
@@ -293,7 +294,7 @@ class PlayerSession:
             self.stats["body_commands"] += 1
         out += self._view()
         if any(text.startswith("(turn_neck") for text in out):
-            self._necked = b.time
+            self._necked = b.steps
         else:
             out += self._scan()
         skill = self.skill
