@@ -30,7 +30,7 @@ from rcss_picture import table as picture_table
 from rcss_reach_fit import LOSSES, lead, loss_table, set_off, set_off_table
 from rcss_reach_fit import kicks as reach_kicks
 from rcss_reach_fit import table as reach_table
-from rcss_series import again, match_stats, moves_of, read_rcg, top_speeds
+from rcss_series import GAVE_UP, again, match_stats, moves_of, play_again_if_unplayed, read_rcg, row_line, top_speeds
 from rcss_set_pieces import kind_of, set_pieces
 from rcss_set_pieces import table as set_piece_table
 
@@ -166,6 +166,36 @@ def test_a_match_played_again_into_its_directory_sets_the_earlier_ones_files_asi
     for name in ("incomplete.rcg", "20261127120000-CF_0-vs-null.rcg", "20261127121000-CF_0-vs-HELIOS_base_5.rcg"):
         (tmp_path / name).write_text("")
     assert game_log(tmp_path).name == "20261127121000-CF_0-vs-HELIOS_base_5.rcg"  # the newest finished one
+
+
+def test_a_match_the_server_gave_up_on_is_played_again_and_one_that_failed_otherwise_is_not(tmp_path):
+    """rcssserver quits a synch-mode match when a client missed 20 cycles running (a slow start beside
+    other work): the series plays it again, up to --replays times, and says so in the table."""
+    import argparse
+
+    played = []
+
+    def play_one(args, n, logs):
+        out = tmp_path / f"match-{n}"
+        out.mkdir(exist_ok=True)
+        text = logs[len([m for m in played if m == n])]
+        played.append(n)
+        (out / "server.log").write_text(text)
+        if "Exiting" in text or "Segmentation" in text:
+            return {"n": n, "error": "exit 1: RuntimeError: rcssserver exited with 1"}
+        return {"n": n, "score": [1, 0], "cpu_ms_per_cycle": 100.0, "relaunched": 0, "executed": 1.0}
+
+    args = argparse.Namespace(out=str(tmp_path), replays=1)
+    gave_up = f"Someone missed a cycle at 20\n{GAVE_UP}! Exiting\n"
+    row = play_again_if_unplayed(args, 1, lambda a, n: play_one(a, n, [gave_up, "ok"]))
+    assert row["score"] == [1, 0] and row["replayed"] == 1 and played == [1, 1]
+    assert row_line(row).startswith("| 1 (played again) | 1:0 |")
+    row = play_again_if_unplayed(args, 2, lambda a, n: play_one(a, n, [gave_up, gave_up, "ok"]))
+    assert "error" in row and row["replayed"] == 1 and played.count(2) == 2  # at most --replays times
+    row = play_again_if_unplayed(args, 3, lambda a, n: play_one(a, n, ["Segmentation fault", "ok"]))
+    assert "error" in row and "replayed" not in row and played.count(3) == 1  # another failure: told, not hidden
+    args.replays = 0
+    assert "error" in play_again_if_unplayed(args, 4, lambda a, n: play_one(a, n, [gave_up, "ok"]))
 
 
 def test_tackles_idle_cycles_and_time_in_their_third_are_read_from_the_game_log(tmp_path, capsys):

@@ -3,7 +3,7 @@
     python tools/rcss_series.py --server $RCSSSERVER --opponent PYRUS \\
         --opponent-cmd "bash -c 'cd /path/to/Pyrus2D && ./start.sh -t {team} --disable-file-log'" \\
         [--matches 5] [--cycles 2000] [--realtime] [--seed 0] [--out DIR] [--kick-off referee|trainer] [--no-coach]
-        [--log-requests] [--talk framework|say]
+        [--log-requests] [--talk framework|say] [--replays 1]
 
 Each match is ``tools/rcss_match.py`` with the server's game log on (synch mode unless
 --realtime; two halves; our 11 players against the opponent's, started with its own
@@ -17,7 +17,8 @@ share in which he neither kicked nor tackled it; "held": such cycles in which hi
 the last 10 cycles held him, as rcssserver's tackle_cycles does), offsides and faults (free kick, catch, back
 pass) called against each side, the mean top speed of each side's field players (their
 heterogeneous types, m/cycle at full dashes), our CPU per cycle, relaunches, and the share of our body commands
-the server executed; then the series' totals. The opponent is never part of this repository: build it
+the server executed; then the series' totals. A match the server gave up in (a client too slow
+for synch mode, e.g. beside other work) is played again, up to --replays times. The opponent is never part of this repository: build it
 beside it (see docs/rcssserver.md).
 
     python tools/rcss_series.py --again DIR   # the table of a series played into DIR, read again
@@ -276,6 +277,32 @@ def top_speeds(rcg: Path, our_side: str) -> list[float] | None:
     return [round(sum(v) / max(1, len(v)), 3) for v in (speeds[our_side], speeds[theirs])]
 
 
+GAVE_UP = "Waiting too long for clients"  # rcssserver's words when a client missed 20 synch-mode cycles running
+
+
+def gave_up(row: dict, out: Path) -> bool:
+    """Whether a match failed because the server gave up waiting for a client in synch mode (each
+    cycle 1.25 s at most, 20 such cycles in a row): a slow start beside other work (Pyrus2D's eleven
+    Python players), not anything the teams did; such a match may be played again."""
+    log = out / "server.log"
+    return "error" in row and log.exists() and GAVE_UP in log.read_text(errors="replace")
+
+
+def play_again_if_unplayed(args: argparse.Namespace, n: int, play_one=None) -> dict:
+    """Match ``n`` (``play_one``: :func:`play` unless told), played again up to ``--replays`` times while
+    the server gives up waiting for its clients; the row says how often it was."""
+    play_one = play_one or play
+    row = play_one(args, n)
+    tries = 0
+    while tries < args.replays and gave_up(row, Path(args.out) / f"match-{n}"):
+        tries += 1  # (rcss_match sets the failed try's files aside in the match's earlier-N)
+        print(f"match {n}: the server gave up waiting for its clients; playing it again", file=sys.stderr, flush=True)
+        row = play_one(args, n)
+    if tries:
+        row["replayed"] = tries
+    return row
+
+
 def play(args: argparse.Namespace, n: int) -> dict:
     out = Path(args.out) / f"match-{n}"
     argv = [sys.executable, str(HERE / "rcss_match.py"), "--server", args.server, "--players", "11"]
@@ -327,7 +354,7 @@ HEADER = (
 
 def row_line(r: dict) -> str:
     """One match's table row."""
-    n = r["n"]
+    n = f"{r['n']} (played again)" if r.get("replayed") else r["n"]
     if "error" in r:
         return f"| {n} | failed: {r['error'][:300]} | | | | | | | | | | | |"
     shots, poss = r.get("shots", ["?", "?"]), r.get("possession", [0, 0])
@@ -383,6 +410,12 @@ def main() -> int:
     ap.add_argument("--cycles", type=int, default=2000, help="match length (two halves)")
     ap.add_argument("--realtime", action="store_true")
     ap.add_argument("--timeout", type=float, default=3600.0, help="seconds each match may take")
+    ap.add_argument(
+        "--replays",
+        type=int,
+        default=1,
+        help="times a match is played again when the server gave up waiting for a client (a slow start)",
+    )
     ap.add_argument("--out", default="rcss-series")
     ap.add_argument("--seed", type=int, default=0, help="match n gets the server's player-type seed SEED+n")
     ap.add_argument(
@@ -420,7 +453,7 @@ def main() -> int:
     print(HEADER)
     rows = []
     for n in range(1, args.matches + 1):
-        rows.append(play(args, n))
+        rows.append(play_again_if_unplayed(args, n))
         print(row_line(rows[-1]), flush=True)
         (Path(args.out) / "series.json").write_text(json.dumps(rows, indent=1))  # after each match: --again
     print("\n" + totals_line(rows))
