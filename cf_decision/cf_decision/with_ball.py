@@ -32,6 +32,10 @@ CLEAR_AIM = 20.0  # m: the clearance aims at a point this far along its way (ins
 CLEAR_SPEED = 2.0  # m/cycle: what a hurried touch of a ball not placed for it gives (not the 2.7 most)
 LANE_LENGTH = 15.0  # m: a dribble's lane: the opponents this close and
 LANE_ANGLE = 30.0  # degrees: this far off its way are the ones it runs into
+# On the wing 60 degrees off the way to goal is sideways or back: such a carry went back into the
+# men in the middle, and 32 of 46 touches more than 100 degrees off straight up were lost at once
+# (HELIOS base, docs/performance.md, session 49).
+WAY_OFF_UP_FIELD = 75.0  # degrees: a dribble's way goes at most this far off straight up the field
 LOOK_AGE = 2  # cycles: at our set piece, an opponent seen longer ago than this is looked for first,
 LOOK_RADIUS = 30.0  # m: if he was this close to the ball and
 LOOK_BEHIND = 5.0  # m: at most this much nearer our goal than the ball
@@ -221,7 +225,8 @@ Way = tuple[tuple[float, float], tuple[int, float]]  # a dribble's target, and i
 
 
 def free_ways(state: WorldState, me: tuple[float, float]) -> list[Way]:
-    """The points 10 m away, towards the goal or up to 60 degrees off it, with space on the way: the
+    """The points 10 m away, towards the goal or up to 60 degrees off it (but at most WAY_OFF_UP_FIELD off
+    straight up the field), with space on the way: the
     straightest first (of two as straight, the one towards the middle of the field), each with its room.
 
     Space: nobody within 2.5 m, nor within 6 m and 60 degrees of the way (:func:`space_ahead`).
@@ -234,6 +239,8 @@ def free_ways(state: WorldState, me: tuple[float, float]) -> list[Way]:
     ways = []
     for off in (0.0,) if me[0] < -FIELD_HALF_LENGTH / 3 else (0.0, 30.0, -30.0, 60.0, -60.0):
         heading = toward + math.radians(off if me[1] <= 0 else -off)
+        if abs(heading) > math.radians(WAY_OFF_UP_FIELD):
+            continue
         x = min(FIELD_HALF_LENGTH - 8.0, me[0] + 10.0 * math.cos(heading))
         y = max(-FIELD.width / 2 + 3.0, min(FIELD.width / 2 - 3.0, me[1] + 10.0 * math.sin(heading)))
         if dist(me, (x, y)) <= 4.0 or not space_ahead(state, me, (x, y)):

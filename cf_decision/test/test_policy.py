@@ -10,7 +10,15 @@ from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path,
 from cf_decision.roles import KICK_OFF_WING, Role, back_line, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
 from cf_decision.situation import offside_line, their_ball
-from cf_decision.with_ball import CLEAR_SPEED, best_clearance, best_pass, best_shot, free_ways, roomiest
+from cf_decision.with_ball import (
+    CLEAR_SPEED,
+    WAY_OFF_UP_FIELD,
+    best_clearance,
+    best_pass,
+    best_shot,
+    free_ways,
+    roomiest,
+)
 from cf_decision.without_ball import NEVER, choose_interceptor, marking
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, Velocity, WorldState
 from cf_lang.ontology import actions as act
@@ -468,6 +476,11 @@ def test_a_wide_dribbler_takes_the_way_with_the_most_room_not_the_first_free_one
     assert free is not None and free[1] < 25.0 - 4.0
     # A man within 2.5 m: no dribble at all.
     assert free_ways(state(me, ball=(10.5, 25.0), players=[opp(2, 11.5, 23.5)]), me) == []
+    # Deep on the wing the way to goal is 37 degrees inward, and 60 off it is back: never a way.
+    wing = (15.0, 28.0)
+    for x, y in (w for w, _ in free_ways(state(wing, ball=(15.5, 28.0)), wing)):
+        assert abs(math.degrees(math.atan2(y - wing[1], x - wing[0]))) <= WAY_OFF_UP_FIELD + 0.1
+    assert len(free_ways(state(wing, ball=(15.5, 28.0)), wing)) == 4  # of five: the one 97 degrees off up
 
 
 def test_on_our_ball_forwards_wait_on_their_last_line():

@@ -483,6 +483,7 @@ STILL = 0.4  # m/cycle: if the ball is slower than this (it stays in reach meanw
 DODGE_ANGLES = (0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0)  # degrees off the way a dribble's touch may go
 DODGE_LOOK = 10  # cycles of the pushed ball's roll looked at
 OPPONENT_REACH = 1.2  # m: an opponent has the ball within this (a base team's widest kickable area)
+BEHIND = 90.0  # degrees off the body: a dribbler goes after a ball this far round only after a turn
 
 
 def dribble_way(world: World, me: SimPlayer, x: float, y: float, push: float) -> float:
@@ -527,11 +528,17 @@ def _my_cycles(world: World, me: SimPlayer, path: list[tuple[float, float]]) -> 
     """The first cycle after this touch in which I can have the ball on ``path`` again (DODGE_LOOK + 1: none).
 
     This cycle goes to the touch; then I run after it, gathering speed as rcssserver's dash does.
+    A ball behind me (more than BEHIND degrees off the body) costs a turn first, from a standstill:
+    counted as if I could run any way at full pace, a touch back past me looked safe, and against
+    HELIOS base 32 of 46 touches more than 100 degrees off straight up the field were lost at once,
+    42 of 247 within 45 degrees of it (docs/performance.md, session 49).
     """
     x, y = me.x + me.vx, me.y + me.vy
     runs = run_distances(world, me, DODGE_LOOK, math.hypot(me.vx, me.vy) * world.params.player_decay)
+    turned = [0.0, *run_distances(world, me, DODGE_LOOK, 0.0)]  # a cycle to turn, then from a standstill
     for n, (bx, by) in enumerate(path, start=1):
-        if distance(x, y, bx, by) - world.params.kickable_distance <= runs[n - 1]:
+        behind = abs(norm_deg(direction_deg(x, y, bx, by) - me.body)) > BEHIND
+        if distance(x, y, bx, by) - world.params.kickable_distance <= (turned if behind else runs)[n - 1]:
             return n
     return DODGE_LOOK + 1
 

@@ -342,6 +342,24 @@ def test_a_dribble_takes_the_ball_round_a_man_in_its_way_not_into_him():
     assert step.status == "done" and distance(sim.world.ball.x, sim.world.ball.y, 15.0, 0.0) <= 1.6
 
 
+def test_a_ball_touched_back_past_a_dribbler_running_on_is_his_again_only_after_a_turn():
+    """His pace carries him away from it: he turns, then runs from a standstill. Counted as if he could
+    run any way at full pace at once, such touches looked safe, and most were lost (session 49)."""
+    sim = sim_with((Side.LEFT, 9, 0.0, 0.0, 0.0))
+    me = sim.world.player(Side.LEFT, 9)
+    path, (bx, by), (vx, vy) = [], (-0.5, 0.0), (-0.78, 0.45)  # touched back at 150 degrees, out of reach at once
+    for _ in range(skills.DODGE_LOOK):
+        bx, by, vx, vy = bx + vx, by + vy, vx * 0.94, vy * 0.94
+        path.append((bx, by))
+    me.body = 180.0  # standing, facing the way it goes
+    facing = skills._my_cycles(sim.world, me, path)
+    me.body = 0.0  # standing, facing up the field: a turn first
+    turning = skills._my_cycles(sim.world, me, path)
+    assert facing <= skills.DODGE_LOOK and turning > facing
+    me.vx = 0.8  # and running up the field: further off once turned
+    assert skills._my_cycles(sim.world, me, path) >= turning
+
+
 def test_a_new_dribble_lets_a_ball_rolling_its_way_run_unless_a_man_would_get_it_first():
     def first_command(*others):
         sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 30.0), *others)
