@@ -17,14 +17,14 @@ kick-off, so heterogeneous player types are handed out as in a match.
 
 The server's game log is read afterwards; per try: our kick taken, the furthest the ball got up
 the field before their first kick, the cycles until that kick, our shots (kicks from within 25 m
-of their goal, as ``rcss_series`` counts them), the balls we won back in their third and the goals.
+of their goal, as ``rcss_series`` counts them), the balls we won back in their third (in play, as
+``rcss_series`` counts them) and the goals.
 The table and ``drill.json`` (in --out) are the result.
 """
 
 from __future__ import annotations
 
 import argparse
-import itertools
 import json
 import statistics
 import sys
@@ -34,7 +34,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_match import Trainer, kick_off, launch, parser
-from rcss_series import THIRD, kick_events, newest_game_log, read_rcg, shots_of, side_of
+from rcss_series import THIRD, kick_events, newest_game_log, read_rcg, shots_of, side_of, territory_of
 
 MODES = {"kick-off": "kick_off", "free-kick": "free_kick"}  # the drill -> our set piece's play mode
 SETTLE = 10  # steps in before_kick_off for both teams to take their places
@@ -49,7 +49,7 @@ class Try:
     furthest: float  # m up the field (our frame) the ball got before their first kick (set piece spot if none)
     kept: int  # cycles from our first kick to theirs (the window's end if none)
     shots: int  # our kicks from within 25 m of their goal (rcss_series.shots_of)
-    won_there: int  # balls we won in their third (a kick of ours there right after one of theirs)
+    won_there: int  # balls we won in their third in play (rcss_series.territory_of, as a series counts them)
     goals_for: int
     goals_against: int
 
@@ -75,9 +75,6 @@ def tries_of(frames: list, our_side: str, set_piece: str, starts: list[int]) -> 
         kept = 0
         if first_ours is not None:
             kept = seg[upto][0] - seg[first_ours[0]][0]
-        won_there = sum(
-            1 for a, b in itertools.pairwise(kicks) if a[1] != our_side and b[1] == our_side and fwd * b[3] > THIRD
-        )
         modes = {f[1] for f in seg}
         them = "r" if our_side == "l" else "l"
         out.append(
@@ -87,7 +84,7 @@ def tries_of(frames: list, our_side: str, set_piece: str, starts: list[int]) -> 
                 furthest=round(furthest, 1),
                 kept=kept,
                 shots=shots_of(seg)[our_side],
-                won_there=won_there,
+                won_there=territory_of(seg, our_side)["us"].won[2],
                 goals_for=int(f"goal_{our_side}" in modes),
                 goals_against=int(f"goal_{them}" in modes),
             )
