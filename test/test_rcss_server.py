@@ -19,7 +19,7 @@ import pytest
 from cf_sim_backend.player_types import choose_types
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
-from rcss_series import kick_off_types
+from rcss_series import kick_off_types, newest_game_log, read_rcg
 
 SERVER = os.environ.get("RCSSSERVER", "")
 MATCH = Path(__file__).resolve().parents[1] / "tools" / "rcss_match.py"
@@ -126,3 +126,38 @@ def test_a_drill_sets_our_free_kick_up_again_and_again_and_counts_each_try(tmp_p
     assert len(result["starts"]) == 3 and result["team_exit_codes"] == [0]
     # Each try began where the trainer put the ball (ours is the left side: x up the field).
     assert all(t["taken"] and t["furthest"] >= 20.0 for t in result["tries"]), result["tries"]
+
+
+def test_a_replay_drill_puts_everyone_where_an_earlier_game_log_had_them_and_plays_on(tmp_path):
+    """A crafted game log: CF 2 kicks at (25, -10) with CFB's two men near; each try begins there."""
+    old = tmp_path / "old"
+    old.mkdir()
+    at = {
+        ("l", 1): (-45.0, 0.0),
+        ("l", 2): (24.5, -10.0),
+        ("l", 3): (10.0, 5.0),
+        ("r", 1): (48.0, 0.0),
+        ("r", 2): (30.0, -8.0),
+    }
+    lines = ["ULG6", "(team 1 CF CFB 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 8):
+        players = " ".join(
+            f"(({side} {n}) 0 0x1 {x} {y} 0 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) (c {int(t >= 5 and (side, n) == ('l', 2))} 0 0 0 0 0 0 0 0 0 0))"
+            for (side, n), (x, y) in at.items()
+        )
+        lines.append(f"(show {t} ((b) 25 -10 0 0) {players})")
+    (old / "m.rcg").write_text("\n".join(lines) + "\n")
+    out = tmp_path / "drill"
+    argv = [sys.executable, str(DRILL), "--server", SERVER, "--out", str(out), "--players", "3", "--opponents", "2"]
+    argv += ["--opponent", "CFB", "--drill", "replay", "--from", str(old), "--tries", "2", "--window", "20"]
+    done = subprocess.run(argv, capture_output=True, text=True, timeout=900)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert "replay of 1 situations" in done.stdout, done.stdout
+    result = json.loads((out / "drill.json").read_text())
+    assert result["situations"] == ["m.rcg@4", "m.rcg@4"] and len(result["starts"]) == 2
+    frames = {f[0]: f for f in read_rcg(newest_game_log(out)) if f[1] == "play_on"}
+    for start in result["starts"]:
+        _, _, ball, players = frames[start]  # the last step held: everyone within a step of his place
+        assert abs(ball[0] - 25.0) < 1.5 and abs(ball[1] + 10.0) < 1.5, (start, ball)
+        for side, n, x, y, _ in players:
+            assert abs(x - at[(side, n)][0]) < 1.5 and abs(y - at[(side, n)][1]) < 1.5, (start, side, n, x, y)

@@ -18,7 +18,7 @@ from proctree import run_passing_on
 from rcss_ball_use import ball_use, game_log, moves_table, reason, table, territory, territory_table
 from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import table as belief_table
-from rcss_drill import Try, tries_of
+from rcss_drill import HOLD, Try, ended_for_them, placement, situations, spread, tries_of
 from rcss_drill import table as drill_table
 from rcss_goals import goal_rows, goals, summary
 from rcss_keeper import HEADER, row, shots
@@ -693,3 +693,54 @@ def test_a_drill_is_cut_into_its_tries_by_the_set_pieces_the_trainer_gave():
     assert "| 1:1 | 1 | 3 | 1 | 0 | 17.0 m | 17 | 1 |" in text and "2 tries taken of 2" in text
     # Seen from the other side, the same log has no kick-off of "ours".
     assert tries_of(drill_frames(), "r", "kick_off", [1, 40]) == []
+
+
+def test_a_try_ends_when_the_ball_is_given_to_them_and_an_offence_names_the_offender():
+    """We are the left side: their free kick or an offence of ours ends a try; their foul does not."""
+    for mode in ("free_kick_r", "kick_in_r", "goal_kick_r", "offside_l", "foul_charge_l", "back_pass_l"):
+        assert ended_for_them(mode), mode
+    for mode in ("free_kick_l", "kick_in_l", "goal_r", "goal_l", "foul_charge_r", "offside_r", "play_on"):
+        assert not ended_for_them(mode), mode
+
+
+def test_a_replay_drill_takes_the_moments_before_our_kicks_in_the_zone_and_places_everyone_as_then(tmp_path):
+    """CF plays on the right (attacking -x). Its 9 kicks in play at 5 (ball at x -20: our frame 20),
+    6 (too soon after), 50 (x -30: 30) and 80 (x +10: our half); PYRUS 3 kicks at 20; a kick at a
+    kick-in (60) does not count. Everyone is placed as at the time before each kick, turned round so
+    that CF is the left side, as in a drill."""
+    kicks = {("l", 3): 0, ("r", 9): 0}
+    touches = {5: ("r", 9), 6: ("r", 9), 20: ("l", 3), 50: ("r", 9), 60: ("r", 9), 80: ("r", 9)}
+    ball_x = {4: -20.0, 5: -20.0, 49: -30.0, 59: -30.0, 79: 10.0}
+    lines = ["ULG6", "(team 1 PYRUS CF 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 90):
+        if t == 59:
+            lines.append(f"(playmode {t} kick_in_r)")
+        if t == 61:
+            lines.append(f"(playmode {t} play_on)")
+        if t in touches:
+            kicks[touches[t]] += 1
+        x = ball_x.get(t, 0.0)
+        players = (
+            f"((l 3) 0 0x1 {x - 2} 4 0.5 0 170 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) (c {kicks[('l', 3)]} 0 0 0 0 0 0 0 0 0 0)) "
+            f"((r 9) 0 0x1 {x + 0.5} -3 -0.4 0.2 -170 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) (c {kicks[('r', 9)]} 0 0 0 0 0 0 0 0 0 0))"
+        )
+        lines.append(f"(show {t} ((b) {x} -2.5 -1 0.25) {players})")
+    rcg = tmp_path / "m.rcg"
+    rcg.write_text("\n".join(lines) + "\n")
+    found = situations(rcg, "CF", (0.0, 52.5))
+    assert [s.source for s in found] == ["m.rcg@4", "m.rcg@49"]
+    first = found[0]
+    assert (first.ball.x, first.ball.y, first.ball.vx, first.ball.vy) == (20.0, 2.5, 1.0, -0.25)
+    mine, his = first.ours[9], first.theirs[3]
+    assert (mine.x, mine.y, mine.vx, mine.vy, mine.body) == (19.5, 3.0, 0.4, -0.2, 10.0)
+    assert (his.x, his.y, his.body) == (22.0, -4.0, -10.0)
+    assert situations(rcg, "CF", (0.0, 25.0)) == [first]
+    theirs = situations(rcg, "PYRUS", (-52.5, 52.5))  # the left side's: as the game log has it
+    assert [(s.source, s.ours[3].x, s.ours[3].body) for s in theirs] == [("m.rcg@19", -2.0, 170.0)]
+    assert placement(first, "CF", "PYRUS", moving=False) == [
+        "(move (player CF 9) 19.5 3 10 0 0)",
+        "(move (player PYRUS 3) 22 -4 -10 0 0)",
+        "(move (ball) 20 2.5 0 0 0)",
+    ]
+    assert placement(first, "CF", "PYRUS", moving=True)[-1] == "(move (ball) 20 2.5 0 1 -0.25)"
+    assert spread([1, 2, 3, 4], 2) == [1, 3] and spread([1, 2], 3) == [1, 2, 1] and HOLD > 0

@@ -2,7 +2,8 @@
 and what came of each try.
 
     python tools/rcss_drill.py --server $RCSSSERVER --opponent HELIOS_base --opponent-cmd "start.sh -t {team}"
-                               [--drill kick-off|free-kick] [--at X Y] [--tries 30] [--window 100] [--out DIR]
+                               [--drill kick-off|free-kick|replay] [--at X Y] [--tries 30] [--window 100] [--out DIR]
+                               [--from MATCH_DIR ...] [--zone X0 X1]
                                (and any option of tools/rcss_match.py)
 
 A match gives our team five or six kick-offs in 2000 cycles; a drill gives one every ~110 cycles.
@@ -12,6 +13,15 @@ the centre spot (a kick-off) or at ``--at X Y`` (a free kick of ours, in our dec
 the field towards their goal, Y to the left of that), and gives us the kick-off or the free kick.
 The try ends ``--window`` cycles after our first kick, at a goal, or when the referee stops play
 for the other side; then the next is set up.
+
+``--drill replay`` sets up open play instead: situations of earlier matches' game logs (``--from``,
+match directories), each the moment before a kick of ours in play with the ball in ``--zone``
+(metres up the field in our frame; their half by default), at least GAP cycles after the last one
+taken. The trainer puts all 22 players (their body's direction too) and the ball where that game
+log had them, holds them there for HOLD steps (both sides see the picture and believe it) and
+lets them go with the game log's velocities, in play on. The tries go through the situations in
+order, evenly spread over them when there are more than tries. The opponent should be the one of
+those matches (its players are placed by shirt number).
 Synch mode only (the trainer counts the server's steps). The first try is the referee's own
 kick-off, so heterogeneous player types are handed out as in a match.
 
@@ -26,6 +36,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import statistics
 import sys
 import time
@@ -36,10 +47,102 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_match import Trainer, kick_off, launch, parser
 from rcss_series import THIRD, kick_events, newest_game_log, read_rcg, shots_of, side_of, territory_of
 
-MODES = {"kick-off": "kick_off", "free-kick": "free_kick"}  # the drill -> our set piece's play mode
+MODES = {"kick-off": "kick_off", "free-kick": "free_kick", "replay": "play_on"}  # the drill -> the play mode it sets
 SETTLE = 10  # steps in before_kick_off for both teams to take their places
 STEP_WAIT = 30.0  # s without a simulation step: the server is stuck or gone
 TAKE_WAIT = 100  # steps our taker has to kick before the try is given up
+HOLD = 4  # steps a replayed situation is held still before play goes on
+GAP = 30  # cycles between two situations taken from one game log
+
+
+@dataclass(frozen=True)
+class Body:
+    x: float
+    y: float
+    vx: float
+    vy: float
+    body: float  # degrees (a player's; the ball's is 0)
+
+
+@dataclass(frozen=True)
+class Situation:
+    """A moment of an earlier match in the server's frame, turned round if need be so that we are
+    the left side (as in a drill)."""
+
+    source: str  # the game log's name and time, for the record
+    ball: Body
+    ours: dict[int, Body]
+    theirs: dict[int, Body]
+
+
+def show_bodies(line: str) -> tuple[Body, dict[tuple[str, int], Body]]:
+    """The ball and the players of a game log's ``(show ...)`` line, in the server's frame."""
+    _, _, rest = line.partition(" ((b) ")
+    bx, by, bvx, bvy = (float(v) for v in rest.split(")")[0].split()[:4])
+    players = {}
+    for chunk in rest.split(" ((")[1:]:
+        words = chunk.replace("(", " ").replace(")", " ").split()
+        if len(words) < 9 or words[0] not in ("l", "r") or words[3] == "0":
+            continue  # (not a player, or one that never connected: state 0)
+        x, y, vx, vy, body = (float(w) for w in words[4:9])
+        players[(words[0], int(words[1]))] = Body(x, y, vx, vy, body)
+    return Body(bx, by, bvx, bvy, 0.0), players
+
+
+def as_left(b: Body, our_side: str) -> Body:
+    """``b`` turned round the centre spot when we played on the right."""
+    if our_side == "l":
+        return b
+    return Body(-b.x, -b.y, -b.vx, -b.vy, math.remainder(b.body + 180.0, 360.0))
+
+
+def situations(rcg: Path, team: str, zone: tuple[float, float], gap: int = GAP) -> list[Situation]:
+    """The moments before kicks of ours in play with the ball within ``zone`` (x, our frame), each at
+    least ``gap`` cycles after the last one taken, in ``rcg`` (where ``team`` played either side)."""
+    side = side_of(rcg, team)
+    forward = 1.0 if side == "l" else -1.0
+    frames = read_rcg(rcg)
+    chosen, last = [], None
+    for i, kicker, *_ in kick_events(frames):
+        t, mode, ball, _ = frames[i - 1] if i > 0 else frames[i]
+        if kicker != side or i == 0 or mode != "play_on" or not zone[0] <= forward * ball[0] <= zone[1]:
+            continue
+        if last is None or t - last >= gap:
+            chosen.append(t)
+            last = t
+    shows = {}
+    for line in rcg.read_text(errors="replace").splitlines():
+        if line.startswith("(show "):
+            t = int(line.split()[1])
+            if t in chosen and t not in shows:  # (a stopped clock repeats a time: its first show)
+                shows[t] = line
+    out = []
+    for t in chosen:
+        ball, players = show_bodies(shows[t])
+        ours = {n: as_left(b, side) for (s, n), b in players.items() if s == side}
+        theirs = {n: as_left(b, side) for (s, n), b in players.items() if s != side}
+        out.append(Situation(f"{rcg.name}@{t}", as_left(ball, side), ours, theirs))
+    return out
+
+
+def spread(items: list, n: int) -> list:
+    """``n`` of ``items`` evenly spread over them, in order (all of them, over again, when too few)."""
+    if len(items) >= n:
+        return [items[i * len(items) // n] for i in range(n)]
+    return [items[i % len(items)] for i in range(n)]
+
+
+def placement(s: Situation, team: str, opponent: str, moving: bool) -> list[str]:
+    """The trainer's commands that put everyone where ``s`` has them; ``moving``: with the game log's
+    velocities, else standing still."""
+
+    def move(who: str, b: Body, turn: bool = True) -> str:
+        v = f" {b.vx:g} {b.vy:g}" if moving else " 0 0"
+        return f"(move {who} {b.x:g} {b.y:g} {b.body if turn else 0:g}{v})"  # (the ball's angle is read, unused)
+
+    ours = [move(f"(player {team} {n})", b) for n, b in sorted(s.ours.items())]
+    theirs = [move(f"(player {opponent} {n})", b) for n, b in sorted(s.theirs.items())]
+    return [*ours, *theirs, move("(ball)", s.ball, turn=False)]
 
 
 @dataclass(frozen=True)
@@ -59,7 +162,7 @@ def tries_of(frames: list, our_side: str, set_piece: str, starts: list[int]) -> 
     a game time in ``starts`` (when the trainer gave it) to the next try's (the game log does not
     show the trainer's ``before_kick_off``, and the clock stands still in it)."""
     fwd = 1.0 if our_side == "l" else -1.0
-    ours = f"{set_piece}_{our_side}"
+    ours = set_piece if set_piece == "play_on" else f"{set_piece}_{our_side}"
     begins = [next((i for i, f in enumerate(frames) if f[0] >= t and f[1] == ours), None) for t in starts]
     begins = [i for i in begins if i is not None]
     out = []
@@ -113,8 +216,19 @@ def table(tries: list[Try], title: str) -> str:
     return "\n".join(rows)
 
 
-def set_up(trainer: Trainer, args: argparse.Namespace) -> None:
-    """Both teams to their kick-off places, stamina back, the ball placed, our set piece given."""
+def set_up(trainer: Trainer, args: argparse.Namespace, situation: Situation | None = None) -> None:
+    """Both teams to their kick-off places, stamina back, the ball placed, our set piece given; or
+    everyone where ``situation`` has them, held still for HOLD steps, then play on."""
+    if situation is not None:
+        trainer.send("(change_mode play_on)")
+        trainer.send("(recover)")
+        for _ in range(HOLD):
+            for command in placement(situation, args.team, args.opponent, moving=False):
+                trainer.send(command)
+            wait_steps(trainer, 1)
+        for command in placement(situation, args.team, args.opponent, moving=True):
+            trainer.send(command)
+        return
     trainer.send("(change_mode before_kick_off)")
     wait_steps(trainer, SETTLE)
     trainer.send("(recover)")
@@ -145,10 +259,11 @@ def drill(args: argparse.Namespace, trainer: Trainer, server, team_procs: list, 
         if n > 0 or args.drill != "kick-off":
             if n == 0:  # straight from the referee's kick-off to the first free kick
                 wait_steps(trainer, 2)
-            set_up(trainer, args)
+            set_up(trainer, args, args.situations[n] if args.situations else None)
         starts.append(trainer.time)  # (the clock stood still in before_kick_off: the set piece's time)
         wait_steps(trainer, 3)
-        wait_steps(trainer, TAKE_WAIT, lambda: trainer.mode != set_piece)
+        if not args.situations:
+            wait_steps(trainer, TAKE_WAIT, lambda: trainer.mode != set_piece)
         wait_steps(trainer, args.window, lambda: trainer.mode.startswith("goal_") or ended_for_them(trainer.mode))
         wait_steps(trainer, 2)  # the goal or the stop into the game log
         if server.poll() is not None:
@@ -160,9 +275,15 @@ def drill(args: argparse.Namespace, trainer: Trainer, server, team_procs: list, 
     summary["seconds"] = round(time.monotonic() - started, 1)
 
 
+OFFENCES = ("foul_", "back_pass_", "free_kick_fault_", "catch_fault_", "offside_", "illegal_defense_")  # X_l: by us
+
+
 def ended_for_them(mode: str) -> bool:
-    """The referee stopped play and gave the ball to the other side (we are the left team)."""
-    return mode.endswith("_r") and not mode.startswith("goal_")
+    """The referee stopped play and gave the ball to the other side (we are the left team): a mode
+    of theirs, or an offence of ours (the mode names the offender: ``foul_charge_r`` is our free kick)."""
+    if mode.startswith(OFFENCES):
+        return mode.endswith("_l")
+    return mode.endswith("_r") and (mode.startswith("goal_kick_") or not mode.startswith("goal_"))  # (a goal: goal_l_N)
 
 
 def main() -> int:
@@ -171,6 +292,10 @@ def main() -> int:
     ap.add_argument("--at", type=float, nargs=2, default=(30.0, -20.0), metavar=("X", "Y"), help="free kick spot")
     ap.add_argument("--tries", type=int, default=30)
     ap.add_argument("--window", type=int, default=100, help="cycles a try runs after our first kick")
+    ap.add_argument("--from", dest="sources", nargs="+", default=[], metavar="MATCH_DIR", help="replay: game logs")
+    ap.add_argument(
+        "--zone", type=float, nargs=2, default=(0.0, 52.5), metavar=("X0", "X1"), help="replay: the ball's x"
+    )
     ap.set_defaults(timeout=3600.0, game_log=True)
     args = ap.parse_args()
     if args.realtime:
@@ -178,6 +303,17 @@ def main() -> int:
     if args.tries < 1 or args.window < 1:
         ap.error("--tries and --window must be positive")
     args.game_log, args.halves, args.kick_off = True, 1, "referee"
+    args.situations = []
+    if args.drill == "replay":
+        found = []
+        for source in args.sources:
+            rcg = newest_game_log(Path(source))
+            if rcg is None:
+                ap.error(f"no game log in {source}")
+            found += situations(rcg, args.team, tuple(args.zone))
+        if not found:
+            ap.error(f"no kick of {args.team}'s in play with the ball in x {args.zone[0]:g}..{args.zone[1]:g} (--from)")
+        args.situations = spread(found, args.tries)
     args.cycles = 10 * (args.tries * (args.window + TAKE_WAIT) // 10 + 100)  # no half time within the drill
 
     def report(summary: dict) -> None:
@@ -187,9 +323,12 @@ def main() -> int:
             raise RuntimeError(f"no game log in {out}")
         side = side_of(rcg, args.team)
         tries = tries_of(read_rcg(rcg), side, MODES[args.drill], summary["starts"])
-        where = "" if args.drill == "kick-off" else f" at ({args.at[0]:g}, {args.at[1]:g})"
+        where = {"kick-off": "", "free-kick": f" at ({args.at[0]:g}, {args.at[1]:g})"}.get(
+            args.drill, f" of {len({s.source for s in args.situations})} situations"
+        )
         print(table(tries, f"our {args.drill}{where} against {args.opponent}"), flush=True)
         result = {"drill": args.drill, "at": list(args.at), "tries": [asdict(t) for t in tries], **summary}
+        result["situations"] = [s.source for s in args.situations]
         result.pop("players", None)
         (out / "drill.json").write_text(json.dumps(result, indent=1))
 
