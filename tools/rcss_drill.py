@@ -45,7 +45,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_match import Trainer, kick_off, launch, parser
-from rcss_series import THIRD, kick_events, newest_game_log, read_rcg, shots_of, side_of, territory_of
+from rcss_series import THIRD, kick_events, newest_game_log, player_words, read_rcg, shots_of, side_of, territory_of
 
 MODES = {"kick-off": "kick_off", "free-kick": "free_kick", "replay": "play_on"}  # the drill -> the play mode it sets
 SETTLE = 10  # steps in before_kick_off for both teams to take their places
@@ -80,10 +80,7 @@ def show_bodies(line: str) -> tuple[Body, dict[tuple[str, int], Body]]:
     _, _, rest = line.partition(" ((b) ")
     bx, by, bvx, bvy = (float(v) for v in rest.split(")")[0].split()[:4])
     players = {}
-    for chunk in rest.split(" ((")[1:]:
-        words = chunk.replace("(", " ").replace(")", " ").split()
-        if len(words) < 9 or words[0] not in ("l", "r") or words[3] == "0":
-            continue  # (not a player, or one that never connected: state 0)
+    for words in player_words(rest):
         x, y, vx, vy, body = (float(w) for w in words[4:9])
         players[(words[0], int(words[1]))] = Body(x, y, vx, vy, body)
     return Body(bx, by, bvx, bvy, 0.0), players
@@ -305,6 +302,8 @@ def main() -> int:
     args.game_log, args.halves, args.kick_off = True, 1, "referee"
     args.situations = []
     if args.drill == "replay":
+        if not args.sources or args.zone[0] >= args.zone[1]:
+            ap.error("--drill replay needs --from MATCH_DIR ... and a --zone X0 X1 with X0 < X1")
         found = []
         for source in args.sources:
             rcg = newest_game_log(Path(source))

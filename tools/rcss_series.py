@@ -65,10 +65,7 @@ def read_rcg(path: Path, counters: bool = False) -> list[tuple[int, str, tuple[f
             t = int(head.split()[1])
             ball = tuple(float(v) for v in rest.split(")")[0].split()[:2])
             players = []
-            for chunk in rest.split(" ((")[1:]:
-                words = chunk.replace("(", " ").replace(")", " ").split()
-                if len(words) < 6 or words[0] not in ("l", "r") or words[3] == "0":
-                    continue  # (not a player, or one that never connected: state 0)
+            for words in player_words(rest):
                 side, number, x, y = words[0], int(words[1]), float(words[4]), float(words[5])
                 c = words.index("c") + 1 if "c" in words else None
                 kicks = int(words[c]) if c else 0
@@ -79,6 +76,15 @@ def read_rcg(path: Path, counters: bool = False) -> list[tuple[int, str, tuple[f
                     players.append((side, number, x, y, kicks))
             frames.append((t, mode, ball, players))
     return frames
+
+
+def player_words(rest: str):
+    """The words of each player's entry in a show line (``rest``: the text from the ball on):
+    side, number, type, state, x, y, ...; not a player that never connected (state 0)."""
+    for chunk in rest.split(" ((")[1:]:
+        words = chunk.replace("(", " ").replace(")", " ").split()
+        if len(words) >= 6 and words[0] in ("l", "r") and words[3] != "0":
+            yield words
 
 
 def contests(frames: list, our_side: str) -> dict:
