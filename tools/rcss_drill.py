@@ -101,8 +101,8 @@ def situations(rcg: Path, team: str, zone: tuple[float, float], gap: int = GAP) 
     frames = read_rcg(rcg)
     chosen, last = [], None
     for i, kicker, *_ in kick_events(frames):
-        t, mode, ball, _ = frames[i - 1] if i > 0 else frames[i]
-        if kicker != side or i == 0 or mode != "play_on" or not zone[0] <= forward * ball[0] <= zone[1]:
+        t, mode, ball, _ = frames[i - 1]  # (kick_events finds a kick from the second frame on)
+        if kicker != side or mode != "play_on" or not zone[0] <= forward * ball[0] <= zone[1]:
             continue
         if last is None or t - last >= gap:
             chosen.append(t)
