@@ -15,7 +15,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from proctree import run_passing_on
-from rcss_ball_use import ball_use, game_log, moves_table, reason, table, territory, territory_table
+from rcss_ball_use import ball_use, game_log, keeping_table, moves_table, reason, table, territory, territory_table
 from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import table as belief_table
 from rcss_drill import HOLD, Try, ended_for_them, placement, situations, spread, tries_of
@@ -30,7 +30,17 @@ from rcss_picture import table as picture_table
 from rcss_reach_fit import LOSSES, lead, loss_table, set_off, set_off_table
 from rcss_reach_fit import kicks as reach_kicks
 from rcss_reach_fit import table as reach_table
-from rcss_series import GAVE_UP, again, match_stats, moves_of, play_again_if_unplayed, read_rcg, row_line, top_speeds
+from rcss_series import (
+    GAVE_UP,
+    again,
+    keeping_of,
+    match_stats,
+    moves_of,
+    play_again_if_unplayed,
+    read_rcg,
+    row_line,
+    top_speeds,
+)
 from rcss_set_pieces import kind_of, set_pieces
 from rcss_set_pieces import table as set_piece_table
 
@@ -150,6 +160,32 @@ def test_each_move_of_ours_is_counted_by_the_third_it_began_in_and_the_furthest_
     assert moves_of(flipped, "r") == moves_of(frames, "l")
     text = moves_table(moves_of(frames, "l"))
     assert "| our third | 2 | 0 | 1 | 1 |" in text and "| the middle third | 0 |  | 0 | 0 |" in text
+
+
+def test_each_teams_kicks_are_counted_by_half_and_kind_and_by_whom_the_ball_went_to_next():
+    # t: (kicker, his x, the ball's x this frame); the ball's x the next frame says how fast it left.
+    kicks_at = {2: ("l", 2, -30.0), 4: ("l", 4, -20.0), 5: ("l", 4, -20.0), 7: ("r", 7, 10.0), 10: ("l", 2, 5.0)}
+    ball = {1: -30.0, 2: -30.0, 3: -28.0, 4: -20.0, 5: -19.5, 6: -17.0, 7: 10.0, 8: 12.0, 9: 14.0, 10: 5.0, 11: 7.0}
+    modes = {9: "kick_in_l", 12: "foul_charge_r"}  # 7's kick went out: our throw-in; then they fouled us
+    where = {("l", 2): -30.0, ("l", 4): -20.0, ("r", 7): 10.0}
+    counts, frames = {key: 0 for key in where}, []
+    for t in range(1, 14):
+        if t in kicks_at:
+            side, number, x = kicks_at[t]
+            counts[(side, number)] += 1
+            where[(side, number)] = x
+        if t == 13:
+            counts[("r", 7)] += 1  # their free-kick taker: the kick that ends the pairs
+        players = [(s, n, where[(s, n)], 0.0, k) for (s, n), k in counts.items()]
+        frames.append((t, modes.get(t, "play_on"), (ball.get(t, 7.0), 0.0), players))
+    kept = keeping_of(frames, "l")
+    assert kept[("us", "own half", "kick")] == [2, 0, 1, 1]  # 2 to 4 (a team-mate); 4's kick to 7 (theirs)
+    assert kept[("us", "own half", "touch")] == [1, 1, 0, 0]  # 4's touch of 0.5 m, then his own kick
+    assert kept[("them", "own half", "kick")] == [1, 0, 0, 1]  # out of play: our throw-in
+    assert kept[("us", "other half", "kick")] == [1, 0, 1, 0]  # foul_charge_r names the offender: our free kick
+    text = keeping_table(kept, "PYRUS")
+    assert "| us | its own half | kick | 2 | 0 (0%) | 1 (50%) | 1 (50%) |" in text
+    assert "| PYRUS | its own half | kick | 1 | 0 (0%) | 0 (0%) | 1 (100%) |" in text
 
 
 def test_a_match_played_again_into_its_directory_sets_the_earlier_ones_files_aside(tmp_path):

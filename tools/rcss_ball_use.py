@@ -21,6 +21,11 @@ it won the ball back (its first kick after the other team's).
 A third table says how far our moves got: each move (our kicks from the first after one of
 theirs, in play or at our set piece, to their next kick) by the third it began in and the
 furthest third the ball reached meanwhile.
+
+A fourth sets each team's kicks in play beside the other's (``rcss_series.keeping_of``): by the
+half they were kicked in and whether the ball left slower than 1.2 m/cycle (a touch) or faster
+(a kick), what came next: the kicker's own kick again, a team-mate's, or the opponents' (a ball
+kicked out of play counts by whom the referee gave it to).
 """
 
 from __future__ import annotations
@@ -36,7 +41,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_series import Territory, kick_events, moves_of, newest_game_log, read_rcg, side_of, territory_of
+from rcss_series import (
+    Territory,
+    keeping_of,
+    kick_events,
+    moves_of,
+    newest_game_log,
+    read_rcg,
+    side_of,
+    territory_of,
+)
 
 CONTESTED = 1.2  # m: an opponent this near the ball kicks or tackles it as we kick it (rcssserver adds both)
 _DECISION = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) (\w+): (.*)")
@@ -160,6 +174,26 @@ def moves_table(counts: list[list[int]]) -> str:
     return "\n".join(rows)
 
 
+def keeping(match: Path, team: str = "CF") -> dict[tuple[str, str, str], list[int]]:
+    """How each team kept the ball it kicked (``keeping_of``)."""
+    frames, side, _ = game(match, team)
+    return keeping_of(frames, side)
+
+
+def keeping_table(counts: dict[tuple[str, str, str], list[int]], opponent: str = "them") -> str:
+    rows = ["| team | kicked in | kind | kicks | then his own again | a team-mate's | theirs (lost) |"]
+    rows.append("|---|---|---|---:|---:|---:|---:|")
+    for team, name in (("us", "us"), ("them", opponent)):
+        for half in ("own half", "other half"):
+            for kind in ("touch", "kick"):
+                n, own, mate, lost = counts.get((team, half, kind), (0, 0, 0, 0))
+                if n:
+                    shares = " | ".join(f"{k} ({k / n:.0%})" for k in (own, mate, lost))
+                    where = "its own half" if half == "own half" else "the other's half"
+                    rows.append(f"| {name} | {where} | {kind} | {n} | {shares} |")
+    return "\n".join(rows)
+
+
 def table(outcomes: dict[tuple[str, str], Outcome], after: int) -> str:
     rows = [
         "| with the ball | where | kicks | to a team-mate | lost | kept share | an opponent at the ball: kept "
@@ -189,7 +223,10 @@ def main() -> int:
     total: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
     where = {"us": Territory(), "them": Territory()}
     reached = [[0, 0, 0] for _ in range(3)]
+    kept: dict[tuple[str, str, str], list[int]] = defaultdict(lambda: [0, 0, 0, 0])
     for match in args.matches:
+        for key, row in keeping(match, args.team).items():
+            kept[key] = [a + b for a, b in zip(kept[key], row, strict=True)]
         reached = [
             [a + b for a, b in zip(r, m, strict=True)] for r, m in zip(reached, moves(match, args.team), strict=True)
         ]
@@ -203,6 +240,8 @@ def main() -> int:
     print(territory_table(where))
     print()
     print(moves_table(reached))
+    print()
+    print(keeping_table(kept))
     return 0
 
 

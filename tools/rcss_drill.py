@@ -45,7 +45,17 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_match import Trainer, kick_off, launch, parser
-from rcss_series import THIRD, kick_events, newest_game_log, player_words, read_rcg, shots_of, side_of, territory_of
+from rcss_series import (
+    OFFENCES,
+    THIRD,
+    kick_events,
+    newest_game_log,
+    player_words,
+    read_rcg,
+    shots_of,
+    side_of,
+    territory_of,
+)
 
 MODES = {"kick-off": "kick_off", "free-kick": "free_kick", "replay": "play_on"}  # the drill -> the play mode it sets
 SETTLE = 10  # steps in before_kick_off for both teams to take their places
@@ -270,9 +280,6 @@ def drill(args: argparse.Namespace, trainer: Trainer, server, team_procs: list, 
     trainer.send("(eye off)")  # the server no longer waits for us
     trainer.send("(change_mode time_over)")
     summary["seconds"] = round(time.monotonic() - started, 1)
-
-
-OFFENCES = ("foul_", "back_pass_", "free_kick_fault_", "catch_fault_", "offside_", "illegal_defense_")  # X_l: by us
 
 
 def ended_for_them(mode: str) -> bool:

@@ -27,12 +27,14 @@ beside it (see docs/rcssserver.md).
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import math
 import re
 import subprocess
 import sys
 import time
+from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -179,6 +181,39 @@ def moves_of(frames: list, our_side: str) -> list[list[int]]:
             furthest = max(forward * f[2][0] for f in frames[begun : last + 1])
             out[third_of(forward * frames[begun][2][0])][third_of(furthest)] += 1
             begun = None
+    return out
+
+
+OFFENCES = ("foul_", "back_pass_", "free_kick_fault_", "catch_fault_", "offside_", "illegal_defense_")  # X_l: by l
+TOUCH_SPEED = 1.2  # m/cycle: a kick leaving slower than this is a touch (a dribble's push, a collecting touch)
+
+
+def keeping_of(frames: list, our_side: str) -> dict[tuple[str, str, str], list[int]]:
+    """How each team kept the ball it kicked in play: (team "us"/"them", "own half"/"other half",
+    "touch"/"kick") -> [kicks, then the kicker's own kick again, a team-mate's, an opponent's]
+    (``read_rcg``'s frames; a kick followed by a stoppage, or the match's last, is not counted).
+
+    The same count for both teams, so ours can be set beside the opponent's: a base team that
+    keeps its kicks where ours are lost shows what the gap is made of.
+    """
+    out: dict[tuple[str, str, str], list[int]] = defaultdict(lambda: [0, 0, 0, 0])
+    events = kick_events(frames)
+    for (i, side, number, x, _), (j, side2, number2, _, _) in itertools.pairwise(events):
+        if frames[i][1] != "play_on" or i + 1 >= len(frames) or frames[i + 1][1] != "play_on":
+            continue
+        stop = next((frames[k][1] for k in range(i + 1, j + 1) if frames[k][1] != "play_on"), None)
+        if stop is None:
+            outcome = 1 if (side2, number2) == (side, number) else 2 if side2 == side else 3
+        elif stop.endswith(("_l", "_r")):  # out of play first: whose throw-in, goal kick, free kick or goal
+            outcome = 2 if stop.endswith("_" + side) == (not stop.startswith(OFFENCES)) else 3
+        else:
+            continue  # (time up, a drop ball)
+        (bx, by), (ax, ay) = frames[i][2], frames[i + 1][2]
+        kind = "touch" if math.hypot(ax - bx, ay - by) < TOUCH_SPEED else "kick"
+        own = (x < 0) == (side == "l")
+        row = out[("us" if side == our_side else "them", "own half" if own else "other half", kind)]
+        row[0] += 1
+        row[outcome] += 1
     return out
 
 
