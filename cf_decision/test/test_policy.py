@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+import pytest
+
 from cf_decision.goalkeeper import guard_spot
 from cf_decision.policy import decide
 from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
@@ -392,10 +394,19 @@ def test_when_they_have_the_ball_defenders_and_midfielders_mark_goal_side():
     assert "mark" not in decide(ours, 3, 11, {7: 0, 3: 20}).why  # our ball: keep the shape
 
 
+def test_the_block_leans_to_the_balls_wing():
+    middle = {n: home_position(n, ball_x=10.0, ball_y=0.0) for n in range(2, 12)}
+    wing = {n: home_position(n, ball_x=10.0, ball_y=-28.0) for n in range(2, 12)}
+    assert all(wing[n][1] - middle[n][1] == pytest.approx(-0.45 * 28.0) for n in wing)  # everyone 12.6 m over
+    assert wing[8][1] == pytest.approx(-26.6) and wing[11][1] == pytest.approx(-28.6)  # two on the ball's wing
+    assert wing[10][1] == pytest.approx(-12.6) and wing[7][1] == pytest.approx(-12.6)  # two in the channel inside it
+    assert home_position(5, ball_x=10.0, ball_y=-34.0)[1] == -30.0  # none beyond 30 m out
+
+
 def test_our_back_line_holds_behind_the_ball_and_no_man_draws_it_deeper():
     assert back_line(-20.5) == -30.5 and back_line(-40.0) == -45.0 and back_line(10.0) == -20.0
     assert home_position(3, ball_x=-20.0)[0] == -30.0  # (the formation alone: -46, at the -45 limit)
-    assert home_position(3, ball_x=30.0)[0] == -35.0 + 0.7 * 30.0  # up the field the shift rules
+    assert home_position(3, ball_x=30.0)[0] == -35.0 + 30.0  # up the field the shift rules
     runner = opp(10, -40.0, 6.0)  # a man of theirs 20 m behind the ball, by our goal
     st = state((-33.0, 4.0), ball=(-20.5, 0.0), players=[opp(9, -20.0, 0.0), runner], number=3)
     d = decide(st, 3, 11, {4: 2, 3: 20, 7: 5})
