@@ -33,13 +33,13 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_ball_use import game, match_parser
-from rcss_series import kick_events
+from rcss_series import TOUCH_SPEED, kick_events
 
 from cf_decision import reach
 from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
 from cf_sim_backend.world import Params
 
-MIN_SPEED = 1.2  # m/cycle: slower touches are a dribble's pushes, not kicks to anybody
+MIN_SPEED = TOUCH_SPEED  # m/cycle: slower touches are a dribble's pushes, not kicks to anybody
 KICKABLE = Params().kickable_distance  # m: rcssserver's, of the default player type
 HORIZON = reach.HORIZON  # a lead is at most this many cycles either way
 SET_OFF_RUN = 2.0  # m: a receiver nearer than this to the ball's path need not run

@@ -191,7 +191,9 @@ TOUCH_SPEED = 1.2  # m/cycle: a kick leaving slower than this is a touch (a drib
 def keeping_of(frames: list, our_side: str) -> dict[tuple[str, str, str], list[int]]:
     """How each team kept the ball it kicked in play: (team "us"/"them", "own half"/"other half",
     "touch"/"kick") -> [kicks, then the kicker's own kick again, a team-mate's, an opponent's]
-    (``read_rcg``'s frames; a kick followed by a stoppage, or the match's last, is not counted).
+    (``read_rcg``'s frames). A ball out of play before the next kick counts by whom the referee
+    gave it to (a throw-in, a goal kick, a goal; an offence's mode names the offender); one stopped
+    otherwise (time up, a drop ball), and the match's last kick, are not counted.
 
     The same count for both teams, so ours can be set beside the opponent's: a base team that
     keeps its kicks where ours are lost shows what the gap is made of.
