@@ -46,8 +46,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_match import Trainer, kick_off, launch, parser
 from rcss_series import (
-    OFFENCES,
     THIRD,
+    favoured,
     kick_events,
     newest_game_log,
     player_words,
@@ -91,6 +91,8 @@ def show_bodies(line: str) -> tuple[Body, dict[tuple[str, int], Body]]:
     bx, by, bvx, bvy = (float(v) for v in rest.split(")")[0].split()[:4])
     players = {}
     for words in player_words(rest):
+        if len(words) < 9:
+            continue  # (no velocity and body: not placeable)
         x, y, vx, vy, body = (float(w) for w in words[4:9])
         players[(words[0], int(words[1]))] = Body(x, y, vx, vy, body)
     return Body(bx, by, bvx, bvy, 0.0), players
@@ -285,9 +287,8 @@ def drill(args: argparse.Namespace, trainer: Trainer, server, team_procs: list, 
 def ended_for_them(mode: str) -> bool:
     """The referee stopped play and gave the ball to the other side (we are the left team): a mode
     of theirs, or an offence of ours (the mode names the offender: ``foul_charge_r`` is our free kick)."""
-    if mode.startswith(OFFENCES):
-        return mode.endswith("_l")
-    return mode.endswith("_r") and (mode.startswith("goal_kick_") or not mode.startswith("goal_"))  # (a goal: goal_l_N)
+    goal = mode.startswith("goal_") and not mode.startswith("goal_kick_")  # (a goal ends a try by itself)
+    return favoured(mode) == "r" and not goal
 
 
 def main() -> int:

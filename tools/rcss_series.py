@@ -188,6 +188,16 @@ OFFENCES = ("foul_", "back_pass_", "free_kick_fault_", "catch_fault_", "offside_
 TOUCH_SPEED = 1.2  # m/cycle: a kick leaving slower than this is a touch (a dribble's push, a collecting touch)
 
 
+def favoured(mode: str) -> str | None:
+    """The side ("l"/"r") a play mode gives the ball to, or a goal to: the side it names, but the
+    other one for an offence (``foul_charge_r`` names the offender: the left side's free kick);
+    None for a mode that names no side (play on, a drop ball, time up)."""
+    if not mode.endswith(("_l", "_r")):
+        return None
+    named = mode[-1]
+    return ("r" if named == "l" else "l") if mode.startswith(OFFENCES) else named
+
+
 def keeping_of(frames: list, our_side: str) -> dict[tuple[str, str, str], list[int]]:
     """How each team kept the ball it kicked in play: (team "us"/"them", "own half"/"other half",
     "touch"/"kick") -> [kicks, then the kicker's own kick again, a team-mate's, an opponent's]
@@ -206,8 +216,8 @@ def keeping_of(frames: list, our_side: str) -> dict[tuple[str, str, str], list[i
         stop = next((frames[k][1] for k in range(i + 1, j + 1) if frames[k][1] != "play_on"), None)
         if stop is None:
             outcome = 1 if (side2, number2) == (side, number) else 2 if side2 == side else 3
-        elif stop.endswith(("_l", "_r")):  # out of play first: whose throw-in, goal kick, free kick or goal
-            outcome = 2 if stop.endswith("_" + side) == (not stop.startswith(OFFENCES)) else 3
+        elif favoured(stop) is not None:  # out of play first: whose throw-in, goal kick, free kick or goal
+            outcome = 2 if favoured(stop) == side else 3
         else:
             continue  # (time up, a drop ball)
         (bx, by), (ax, ay) = frames[i][2], frames[i + 1][2]
