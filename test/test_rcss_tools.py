@@ -25,11 +25,13 @@ from rcss_keeper import HEADER, row, shots
 from rcss_match import set_aside_earlier
 from rcss_options import best_gain, bin_of, in_behind, line_lanes, line_table, map_table, open_map, open_points, options
 from rcss_options import table as options_table
-from rcss_picture import picture
+from rcss_picture import body_table, by_body, picture
 from rcss_picture import table as picture_table
 from rcss_reach_fit import LOSSES, lead, loss_table, set_off, set_off_table
 from rcss_reach_fit import kicks as reach_kicks
 from rcss_reach_fit import table as reach_table
+from rcss_run_on import errors as run_on_errors
+from rcss_run_on import table as run_on_table
 from rcss_series import (
     GAVE_UP,
     again,
@@ -337,6 +339,27 @@ def test_the_opponents_a_decision_believed_are_set_against_the_game_logs_truth(t
     assert rows == {"forward pass to team-mate": [2, 2, 1], "safe pass to team-mate": [1, 1, 1]}
     assert picture(match, "CF", near=25.0)["forward pass to team-mate"] == [2, 0, 0]  # 31-33 m off the ball
     assert "| forward pass to team-mate | 2 | 2 | 1 | 50% |" in picture_table(rows, 40.0, 3.0)
+    # By where the man stood from the decider: 9 at x = 10 faces up the field (body 0), PYRUS 3 25 m ahead.
+    around = by_body(match, "CF", near=40.0, within=3.0)
+    assert around == {(0, "20 m or more"): [3, 2]}
+    assert "| 0-30 | - | - | 2 of 3 (67%) |" in body_table(around, 3.0)
+
+
+def test_a_man_out_of_sight_is_set_against_the_truth_kept_where_seen_and_run_on(tmp_path):
+    """PYRUS 3 runs up the field 1 m a cycle (the game log shows 0.4 m/cycle: after the decay)."""
+    lines = ["ULG6", "(team 1 CF PYRUS 0 0)", "(playmode 1 play_on)"]
+    for t in range(1, 13):
+        x = 20.0 + (t - 1)
+        lines.append(
+            f"(show {t} ((b) 10 0 0 0) ((l 9) 0 0x1 0 0 0 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) (c 0 0 0 0 0 0 0 0 0 0 0))"
+            f" ((r 3) 0 0x1 {x} 0 0.4 0 0 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) (c 0 0 0 0 0 0 0 0 0 0 0)))"
+        )
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    rows = run_on_errors(tmp_path, "CF", [2, 10], (5.0, 25.0))
+    assert len(rows[2]) == 10 and all(kept == pytest.approx(2.0) for kept, _ in rows[2])
+    assert all(ran == pytest.approx(0.1) for _, ran in rows[2])  # 1 + 0.9 m run on, 2 m truly
+    assert len(rows[10]) == 2 and all(kept == pytest.approx(10.0) and ran < 4.0 for kept, ran in rows[10])
+    assert "| 2 | 10 | 2.00 | 0% | 0.10 | 0% |" in run_on_table(rows)
 
 
 def players_at(where: dict, kicks_of: dict, goalies: tuple = (("r", 1),)) -> str:

@@ -9,7 +9,8 @@ belief's rules and figures:
 
 - a player seen with his team and number is known by them; a sighting without (too far to read)
   is a known player of that team believed near enough to it, else it is told this cycle only;
-- a known player not seen again is told where he was last seen, his uncertainty growing each cycle;
+- a known player not seen again runs on as he was seen running (:func:`rcss.belief.run_on`), his
+  uncertainty growing each cycle;
 - the ball not seen rolls on with its decay, its uncertainty growing; it is forgotten where the
   player should have seen it (well inside his view, or close by), and when the referee moves it
   (a new play mode; at a kick-off it is on the centre spot).
@@ -39,6 +40,7 @@ from cf_sim_backend.rcss.belief import (
     MATCH_RUN,
     PLAYER_MEMORY,
     PLAYER_SIGMA_GROWTH,
+    run_on,
     surely_seen,
 )
 from cf_sim_backend.world import Params, norm_deg
@@ -54,6 +56,8 @@ class _Seen:
     y: float
     sigma: float
     time: int
+    vx: float = 0.0  # m/cycle, after the cycle's decay (as seen)
+    vy: float = 0.0
 
 
 class Memory:
@@ -61,6 +65,7 @@ class Memory:
 
     def __init__(self, params: Params | None = None):
         self.decay = (params or Params()).ball_decay
+        self.player_decay = (params or Params()).player_decay
         self.players: dict[tuple[Team, int], _Seen] = {}
         self.ball: tuple[float, float, float, float, float, int] | None = None  # x, y, vx, vy (m/cycle), sigma, seen
         self.mode: PlayMode | None = None
@@ -117,7 +122,7 @@ class Memory:
                 continue
             if p.which_team is not None and p.player_number is not None:
                 key = (p.which_team, p.player_number)
-                self.players[key] = _Seen(p, pos.x, pos.y, pos.sigma_x or 0.0, t)
+                self.players[key] = _Seen(p, pos.x, pos.y, pos.sigma_x or 0.0, t, *_per_cycle(p))
                 fresh.add(key)
                 told.append(p)
             else:
@@ -138,7 +143,7 @@ class Memory:
                     "top_speed": old.top_speed,
                 }
             )
-            self.players[key] = _Seen(named, pos.x, pos.y, pos.sigma_x or 0.0, t)
+            self.players[key] = _Seen(named, pos.x, pos.y, pos.sigma_x or 0.0, t, *_per_cycle(p))
             fresh.add(key)
             told.append(named)
         self.players = {k: s for k, s in self.players.items() if t - s.time <= PLAYER_MEMORY}
@@ -147,11 +152,13 @@ class Memory:
                 continue
             sigma = s.sigma + PLAYER_SIGMA_GROWTH * (t - s.time)
             yaw = s.player.positioning.yaw if s.player.positioning else None
+            x, y, vx, vy = run_on(s.x, s.y, s.vx, s.vy, t - s.time, self.player_decay)
             told.append(
                 s.player.model_copy(
                     update={
-                        "positioning": AbsolutePositioning(x=s.x, y=s.y, yaw=yaw, sigma_x=sigma, sigma_y=sigma),
-                        "relative": _relative(state, s.x, s.y, sigma),
+                        "positioning": AbsolutePositioning(x=x, y=y, yaw=yaw, sigma_x=sigma, sigma_y=sigma),
+                        "relative": _relative(state, x, y, sigma),
+                        "velocity": Velocity(vx=vx * 10, vy=vy * 10) if s.player.velocity else None,
                         "age": t - s.time,
                     }
                 )
@@ -191,3 +198,8 @@ def _should_see(state: WorldState, x: float, y: float) -> bool:
     head = (me.yaw or 0.0) + (state.me.head_angle or 0.0)
     off = norm_deg(math.degrees(math.atan2(y - me.y, x - me.x) - head))
     return surely_seen(_distance_to_me(state, x, y), off, VIEW_WIDTH / 2, FEEL_DISTANCE)
+
+
+def _per_cycle(p: Player) -> tuple[float, float]:
+    """A sighting's velocity in m/cycle (none told: standing)."""
+    return (p.velocity.vx / 10, p.velocity.vy / 10) if p.velocity else (0.0, 0.0)

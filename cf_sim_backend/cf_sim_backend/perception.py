@@ -10,8 +10,8 @@ normal view: 120 degrees), and anything within 3 m (felt, not seen). Noise:
 a standard deviation of ``noise`` x distance on positions (own pose: a fixed
 small one), reported as sigmas, and of ``noise`` / 4 x distance on the ball's
 velocity, VELOCITY_FAR_SIGMA beyond VELOCITY_FAR: the errors our rcssserver
-belief has (docs/simulator.md). Beyond 20 m a player's number is not read,
-beyond 40 m neither is its team (as rcssserver's see).
+belief has (docs/simulator.md); as much on a player's velocity, told with his number. Beyond 20 m
+a player's number is not read, beyond 40 m neither is its team (as rcssserver's see).
 """
 
 from __future__ import annotations
@@ -128,6 +128,11 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
             continue
         px, py, sigma = noisy(p.x, p.y, d)
         known = d <= NUMBER_FAR
+        velocity = None
+        if known:  # as rcssserver's see: a player's velocity comes with his number
+            spread = noise / 4 * d
+            pvx, pvy = to_own_frame(side, (p.vx + rng.gauss(0, spread)) * 10, (p.vy + rng.gauss(0, spread)) * 10)
+            velocity = Velocity(vx=_clip(pvx, 50.0), vy=_clip(pvy, 50.0))
         others.append(
             Player(
                 player_number=p.number if known else None,
@@ -139,6 +144,7 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
                 relative=RelativePositioning(
                     distance=min(200.0, d), direction=math.radians(norm_deg(rel + me.neck)), sigma_distance=sigma
                 ),
+                velocity=velocity,
                 top_speed=told_speed(p) if known and p.side is side else None,
                 age=0,
             )

@@ -42,6 +42,19 @@ def test_a_player_out_of_sight_is_told_where_last_seen_more_unsure_each_cycle_un
     assert 7 not in opponents(look(sim, memory))
 
 
+def test_a_player_seen_running_is_told_running_on_out_of_sight_as_on_rcssserver():
+    sim = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0), (Side.RIGHT, 7, 10.0, 5.0, 0.0))
+    w, me, memory = sim.world, sim.world.player(Side.LEFT, 2), Memory()
+    w.player(Side.RIGHT, 7).vx = 0.4  # after the cycle's decay (0.4): a 1 m step a cycle
+    seen = opponents(look(sim, memory))[7]
+    assert seen.velocity.vx == pytest.approx(4.0)  # m/s
+    me.body = 180.0  # out of view
+    w.time += 3
+    told = opponents(look(sim, memory))[7]
+    assert told.age == 3 and told.positioning.x == pytest.approx(10.0 + 1.0 + 0.9 + 0.81, abs=0.05)
+    assert told.positioning.y == pytest.approx(5.0, abs=0.05)
+
+
 def test_a_sighting_without_a_number_is_the_known_player_near_it_else_told_once():
     sim = sim_with((Side.LEFT, 2, 0.0, 0.0, 0.0), (Side.RIGHT, 7, 15.0, 0.0, 0.0), (Side.RIGHT, 8, 15.0, 30.0, 0.0))
     w, memory = sim.world, Memory()

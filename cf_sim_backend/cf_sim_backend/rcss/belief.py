@@ -44,6 +44,11 @@ BALL_MEMORY = 100  # cycles the ball's estimate is still reported
 SELF_SIGMA_GROWTH = 0.1  # m per cycle without a see
 BALL_SIGMA_GROWTH = 0.2
 PLAYER_SIGMA_GROWTH = 0.4
+# An unseen player runs on as last seen: the see shows his velocity after the cycle's decay
+# (player_decay, 0.4 for most types), so his step was that over the decay; he is taken to keep
+# making it, RUN_ON of it less each cycle (the figure fitted to HELIOS base's men on game logs).
+RUN_ON = 0.9
+RUN_MOST = 1.2  # m a cycle: no type runs faster (a noisy sighting's velocity over the decay may say so)
 MATCH_GATE = 1.5  # m: a sighting without a number is a known player believed this close to it, plus
 MATCH_RUN = 1.2  # m per cycle since he was last seen (a player's top speed, with noise), up to
 MATCH_MOST = 6.0  # m
@@ -335,7 +340,9 @@ class Belief:
             self.ball.sigma += BALL_SIGMA_GROWTH
             if "ball" in (collided or ()) or (collided is None and self._touching()):
                 self._bounce()
+        decay = float(self.server.get("player_decay", 0.4)) or 0.4  # the default type's: theirs are not told
         for track in self.players.values():
+            track.x, track.y, track.vx, track.vy = run_on(track.x, track.y, track.vx, track.vy, 1, decay)
             track.sigma += PLAYER_SIGMA_GROWTH
         self.players = {k: t for k, t in self.players.items() if self.time - t.seen <= PLAYER_MEMORY}
 
@@ -547,6 +554,19 @@ class Belief:
         return w
 
 
+def run_on(
+    x: float, y: float, vx: float, vy: float, cycles: int, decay: float = 0.4
+) -> tuple[float, float, float, float]:
+    """A player out of sight ``cycles`` cycles on: position and (seen, after-decay) velocity, as RUN_ON has it."""
+    for _ in range(cycles):
+        step = math.hypot(vx, vy) / decay
+        if step <= 0.0:
+            break
+        scale = min(1.0, RUN_MOST / step) / decay
+        x, y, vx, vy = x + vx * scale, y + vy * scale, vx * RUN_ON, vy * RUN_ON
+    return x, y, vx, vy
+
+
 def surely_seen(distance: float, off_head: float, half_view: float, visible_distance: float) -> bool:
     """Whether an object ``distance`` m away, ``off_head`` degrees off the head, is surely shown: well
     inside the view cone (10 degrees in from its edge, 2-50 m away) or well within the distance at
@@ -647,6 +667,7 @@ def world_state(belief: Belief) -> WorldState:
                 is_goalie=tr.goalie if number is not None else None,
                 positioning=place(tr.x, tr.y, tr.sigma, tr.body),
                 relative=relative(tr.x, tr.y, tr.sigma),
+                velocity=velocity(tr.vx, tr.vy) if number is not None else None,
                 top_speed=speed,
                 age=max(0, t - tr.seen),
             )
