@@ -47,12 +47,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_match import Trainer, kick_off, launch, parser
 from rcss_series import (
     THIRD,
+    Body,
     favoured,
     kick_events,
     newest_game_log,
-    player_words,
     read_rcg,
     shots_of,
+    show_bodies,
     side_of,
     territory_of,
 )
@@ -66,15 +67,6 @@ GAP = 30  # cycles between two situations taken from one game log
 
 
 @dataclass(frozen=True)
-class Body:
-    x: float
-    y: float
-    vx: float
-    vy: float
-    body: float  # degrees (a player's; the ball's is 0)
-
-
-@dataclass(frozen=True)
 class Situation:
     """A moment of an earlier match in the server's frame, turned round if need be so that we are
     the left side (as in a drill)."""
@@ -83,19 +75,6 @@ class Situation:
     ball: Body
     ours: dict[int, Body]
     theirs: dict[int, Body]
-
-
-def show_bodies(line: str) -> tuple[Body, dict[tuple[str, int], Body]]:
-    """The ball and the players of a game log's ``(show ...)`` line, in the server's frame."""
-    _, _, rest = line.partition(" ((b) ")
-    bx, by, bvx, bvy = (float(v) for v in rest.split(")")[0].split()[:4])
-    players = {}
-    for words in player_words(rest):
-        if len(words) < 9:
-            continue  # (no velocity and body: not placeable)
-        x, y, vx, vy, body = (float(w) for w in words[4:9])
-        players[(words[0], int(words[1]))] = Body(x, y, vx, vy, body)
-    return Body(bx, by, bvx, bvy, 0.0), players
 
 
 def as_left(b: Body, our_side: str) -> Body:

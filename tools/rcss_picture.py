@@ -18,85 +18,89 @@ import math
 import re
 import sys
 from collections import defaultdict
+from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_ball_use import game, game_log, match_parser, reason
-from rcss_series import player_words
+from rcss_series import Body, show_bodies
 
 _AIMED = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) \w+: (.*?) @ target \S+ \S+ ball \S+ \S+ opp ?(.*)")
 
 
-def picture(match: Path, team: str = "CF", near: float = 25.0, within: float = 3.0) -> dict[str, list[int]]:
-    """Reason -> [decisions, opponents truly within ``near`` of the ball, of them not believed within ``within``]."""
+@dataclass(frozen=True)
+class Aimed:
+    """A decision that logged its aim, beside the game log's truth of its cycle (our frame: x towards
+    their goal, y mirrored as the decision's own frame is)."""
+
+    time: int
+    number: int
+    why: str  # its reason
+    mode: str  # the play mode
+    ball: tuple[float, float]
+    theirs: list[tuple[tuple[float, float], tuple[float, float]]]  # each opponent: (server frame, ours)
+    believed: list[tuple[float, float]]  # the opponents the decision believed in
+
+
+def aimed(match: Path, team: str) -> Iterator[Aimed]:
+    """Each decision of ``team``'s players in ``match`` that logged its aim, in a cycle the game log has."""
     frames, side, forward = game(match, team)
     at = {frame[0]: frame for frame in frames}
-    out: dict[str, list[int]] = defaultdict(lambda: [0, 0, 0])
     for log in sorted(match.glob(f"logs-{team}/*.log")):
         for line in log.read_text(errors="replace").splitlines():
             m = _AIMED.search(line)
             if not m or m.group(1) != team or int(m.group(3)) not in at:
                 continue
-            _, mode, ball, players = at[int(m.group(3))]
-            why = reason(m.group(4))
-            if mode != "play_on" and not why.startswith("set piece"):
-                continue
+            t = int(m.group(3))
+            _, mode, ball, players = at[t]
+            theirs = [((x, y), (forward * x, -forward * y)) for s, _, x, y, _ in players if s != side]
             believed = [tuple(map(float, entry.split()[:2])) for entry in m.group(5).split(",") if entry.strip()]
-            # The game log's frame into ours: x towards their goal, y mirrored as the decision's own frame is.
             ball_ours = (forward * ball[0], -forward * ball[1])
-            truth = [(forward * x, -forward * y) for s, _, x, y, _ in players if s != side]
-            close = [p for p in truth if math.dist(p, ball_ours) <= near]
-            row = out[why]
-            row[0] += 1
-            row[1] += len(close)
-            row[2] += sum(1 for p in close if all(math.dist(p, b) > within for b in believed))
+            yield Aimed(t, int(m.group(2)), reason(m.group(4)), mode, ball_ours, theirs, believed)
+
+
+def picture(match: Path, team: str = "CF", near: float = 25.0, within: float = 3.0) -> dict[str, list[int]]:
+    """Reason -> [decisions, opponents truly within ``near`` of the ball, of them not believed within ``within``]."""
+    out: dict[str, list[int]] = defaultdict(lambda: [0, 0, 0])
+    for a in aimed(match, team):
+        if a.mode != "play_on" and not a.why.startswith("set piece"):
+            continue
+        close = [ours for _, ours in a.theirs if math.dist(ours, a.ball) <= near]
+        row = out[a.why]
+        row[0] += 1
+        row[1] += len(close)
+        row[2] += sum(1 for p in close if all(math.dist(p, b) > within for b in a.believed))
     return out
 
 
-def bodies(match: Path, side: str) -> dict[tuple[int, int], tuple[float, float, float]]:
-    """(time, number) -> (x, y, body direction in degrees) of each of ``side``'s players, from the game log."""
+def bodies(match: Path, side: str) -> dict[tuple[int, int], Body]:
+    """(time, number) -> each of ``side``'s players as a game log's show lines have him."""
     out = {}
     for line in game_log(match).read_text(errors="replace").splitlines():
         if line.startswith("(show "):
-            head, _, rest = line.partition(" ((b) ")
-            t = int(head.split()[1])
-            for w in player_words(rest):
-                if w[0] == side and len(w) >= 9:
-                    out[(t, int(w[1]))] = (float(w[4]), float(w[5]), float(w[8]))
+            t = int(line.split()[1])
+            out.update(((t, n), b) for (s, n), b in show_bodies(line)[1].items() if s == side)
     return out
 
 
 def by_body(match: Path, team: str = "CF", near: float = 25.0, within: float = 3.0) -> dict[tuple[int, str], list[int]]:
     """(degrees off the decider's body, 30 a band; "under 10 m" | "10-20 m" | "20 m or more" from him)
     -> [opponents truly within ``near`` of the ball, of them not believed within ``within``], decisions in play."""
-    frames, side, forward = game(match, team)
-    at = {frame[0]: frame for frame in frames}
-    body = bodies(match, side)
+    body = bodies(match, game(match, team)[1])
     out: dict[tuple[int, str], list[int]] = defaultdict(lambda: [0, 0])
-    for log in sorted(match.glob(f"logs-{team}/*.log")):
-        for line in log.read_text(errors="replace").splitlines():
-            m = _AIMED.search(line)
-            if not m or m.group(1) != team or int(m.group(3)) not in at:
+    for a in aimed(match, team):
+        me = body.get((a.time, a.number))
+        if a.mode != "play_on" or me is None:
+            continue
+        for (x, y), ours in a.theirs:
+            if math.dist(ours, a.ball) > near:
                 continue
-            t, number = int(m.group(3)), int(m.group(2))
-            _, mode, ball, players = at[t]
-            me = body.get((t, number))
-            if mode != "play_on" or me is None:
-                continue
-            believed = [tuple(map(float, entry.split()[:2])) for entry in m.group(5).split(",") if entry.strip()]
-            ball_ours = (forward * ball[0], -forward * ball[1])
-            for s, _, x, y, _ in players:
-                ours = (forward * x, -forward * y)
-                if s == side or math.dist(ours, ball_ours) > near:
-                    continue
-                off = abs(math.remainder(math.degrees(math.atan2(y - me[1], x - me[0])) - me[2], 360.0))
-                d = math.dist((x, y), me[:2])
-                key = (
-                    min(int(off // 30) * 30, 150),
-                    "under 10 m" if d < 10 else "10-20 m" if d < 20 else "20 m or more",
-                )
-                out[key][0] += 1
-                out[key][1] += all(math.dist(ours, b) > within for b in believed)
+            off = abs(math.remainder(math.degrees(math.atan2(y - me.y, x - me.x)) - me.body, 360.0))
+            d = math.hypot(x - me.x, y - me.y)
+            key = (min(int(off // 30) * 30, 150), "under 10 m" if d < 10 else "10-20 m" if d < 20 else "20 m or more")
+            out[key][0] += 1
+            out[key][1] += all(math.dist(ours, b) > within for b in a.believed)
     return out
 
 

@@ -19,24 +19,21 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_ball_use import game_log, match_parser
-from rcss_series import player_words, side_of
+from rcss_series import Body, show_bodies, side_of
 
 from cf_sim_backend.rcss.belief import run_on
 
 OFF = 3.0  # m: further off than this, the man is as good as unknown to a pass judged on him
 
 
-def moving_frames(rcg: Path) -> dict[int, tuple[tuple[float, float], dict]]:
-    """Play-on time -> (ball, {(side, number): (x, y, vx, vy)}) from a game log's show lines."""
+def moving_frames(rcg: Path) -> dict[int, tuple[Body, dict[tuple[str, int], Body]]]:
+    """Play-on time -> the ball and the players of a game log's show line."""
     frames, mode = {}, "before_kick_off"
     for line in rcg.read_text(errors="replace").splitlines():
         if line.startswith("(playmode "):
             mode = line.strip("()").split()[2]
         elif line.startswith("(show ") and mode == "play_on":
-            head, _, rest = line.partition(" ((b) ")
-            ball = tuple(float(v) for v in rest.split(")")[0].split()[:2])
-            players = {(w[0], int(w[1])): tuple(float(v) for v in w[4:8]) for w in player_words(rest) if len(w) >= 8}
-            frames[int(head.split()[1])] = (ball, players)
+            frames[int(line.split()[1])] = show_bodies(line)
     return frames
 
 
@@ -52,14 +49,14 @@ def errors(match: Path, team: str, cycles: list[int], near: tuple[float, float])
             if later is None:
                 continue
             ball, now = later
-            for key, (x, y, vx, vy) in players.items():
+            for key, b in players.items():
                 if key[0] == ours or key[1] == 1 or key not in now:
                     continue
-                truth = now[key][:2]
-                if not near[0] <= math.dist(truth, ball) <= near[1]:
+                truth = (now[key].x, now[key].y)
+                if not near[0] <= math.dist(truth, (ball.x, ball.y)) <= near[1]:
                     continue
-                rx, ry, _, _ = run_on(x, y, vx, vy, k)
-                out[k].append((math.dist((x, y), truth), math.dist((rx, ry), truth)))
+                rx, ry, _, _ = run_on(b.x, b.y, b.vx, b.vy, k)
+                out[k].append((math.dist((b.x, b.y), truth), math.dist((rx, ry), truth)))
     return out
 
 

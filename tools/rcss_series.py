@@ -89,6 +89,30 @@ def player_words(rest: str):
             yield words
 
 
+@dataclass(frozen=True)
+class Body:
+    """The ball or a player in a show line: place and velocity (m/cycle, server frame), body direction."""
+
+    x: float
+    y: float
+    vx: float
+    vy: float
+    body: float  # degrees (a player's; the ball's is 0)
+
+
+def show_bodies(line: str) -> tuple[Body, dict[tuple[str, int], Body]]:
+    """The ball and the players of a game log's ``(show ...)`` line, in the server's frame."""
+    _, _, rest = line.partition(" ((b) ")
+    bx, by, bvx, bvy = (float(v) for v in rest.split(")")[0].split()[:4])
+    players = {}
+    for words in player_words(rest):
+        if len(words) < 9:
+            continue  # (no velocity and body: not placeable)
+        x, y, vx, vy, body = (float(w) for w in words[4:9])
+        players[(words[0], int(words[1]))] = Body(x, y, vx, vy, body)
+    return Body(bx, by, bvx, bvy, 0.0), players
+
+
 def contests(frames: list, our_side: str) -> dict:
     """Tackles of each side (hits, tries), and how often a field player of ours with the ball within
     IDLE_REACH in play on neither kicked nor tackled it (idle cycles, such cycles, idle cycles in
@@ -216,8 +240,8 @@ def keeping_of(frames: list, our_side: str) -> dict[tuple[str, str, str], list[i
         stop = next((frames[k][1] for k in range(i + 1, j + 1) if frames[k][1] != "play_on"), None)
         if stop is None:
             outcome = 1 if (side2, number2) == (side, number) else 2 if side2 == side else 3
-        elif favoured(stop) is not None:  # out of play first: whose throw-in, goal kick, free kick or goal
-            outcome = 2 if favoured(stop) == side else 3
+        elif (given := favoured(stop)) is not None:  # out of play first: whose throw-in, goal kick, free kick or goal
+            outcome = 2 if given == side else 3
         else:
             continue  # (time up, a drop ball)
         (bx, by), (ax, ay) = frames[i][2], frames[i + 1][2]

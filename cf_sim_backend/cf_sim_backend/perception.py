@@ -77,6 +77,11 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
         ox, oy = to_own_frame(side, nx, ny)
         return _clip(ox, 70.0), _clip(oy, 50.0), sigma
 
+    def noisy_velocity(vx: float, vy: float, spread: float) -> tuple[float, float]:
+        """A velocity (m/cycle, absolute) as seen: ``spread`` of noise on each axis, in m/s in the own frame."""
+        nvx, nvy = to_own_frame(side, (vx + rng.gauss(0, spread)) * 10, (vy + rng.gauss(0, spread)) * 10)
+        return _clip(nvx, 50.0), _clip(nvy, 50.0)
+
     def told_speed(p: SimPlayer) -> float:
         """m/s: as on rcssserver, a player is told his own type and his team-mates', not the opponents'."""
         return round(world.params_of(p).top_speed * 10, 3)
@@ -107,15 +112,13 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
     if visible:
         bx, by, sigma = noisy(b.x, b.y, d)
         spread = VELOCITY_FAR_SIGMA if d > VELOCITY_FAR else noise / 4 * d
-        bvx, bvy = to_own_frame(side, (b.vx + rng.gauss(0, spread)) * 10, (b.vy + rng.gauss(0, spread)) * 10)
+        bvx, bvy = noisy_velocity(b.vx, b.vy, spread)
         ball = Ball(
             positioning=AbsolutePositioning(x=bx, y=by, sigma_x=sigma, sigma_y=sigma),
             relative=RelativePositioning(
                 distance=min(200.0, d), direction=math.radians(norm_deg(rel + me.neck)), sigma_distance=sigma
             ),
-            velocity=Velocity(
-                vx=_clip(bvx, 50.0), vy=_clip(bvy, 50.0), sigma_vx=round(spread * 10, 3), sigma_vy=round(spread * 10, 3)
-            ),
+            velocity=Velocity(vx=bvx, vy=bvy, sigma_vx=round(spread * 10, 3), sigma_vy=round(spread * 10, 3)),
             age=0,
         )
 
@@ -130,9 +133,8 @@ def observe(world: World, side: Side, number: int, rng: random.Random, *, noise:
         known = d <= NUMBER_FAR
         velocity = None
         if known:  # as rcssserver's see: a player's velocity comes with his number
-            spread = noise / 4 * d
-            pvx, pvy = to_own_frame(side, (p.vx + rng.gauss(0, spread)) * 10, (p.vy + rng.gauss(0, spread)) * 10)
-            velocity = Velocity(vx=_clip(pvx, 50.0), vy=_clip(pvy, 50.0))
+            pvx, pvy = noisy_velocity(p.vx, p.vy, noise / 4 * d)
+            velocity = Velocity(vx=pvx, vy=pvy)
         others.append(
             Player(
                 player_number=p.number if known else None,
