@@ -666,12 +666,24 @@ def test_the_keeper_tool_tells_a_shot_he_could_reach_from_one_nobody_could(tmp_p
     (far := tmp_path / "far").mkdir()
     (near := tmp_path / "near").mkdir()
     wide = shots(write_shot(far, (-51.0, -6.0), 6.0))
-    assert len(wide) == 1 and wide[0].goal and not wide[0].reached and wide[0].from_spot
+    assert len(wide) == 1 and wide[0].goal and not wide[0].reached and not wide[0].late and wide[0].from_spot
     assert wide[0].off_spot > 5.0
     straight = shots(write_shot(near, (-50.0, 0.0), 0.0))
-    assert len(straight) == 1 and straight[0].reached and straight[0].from_spot
-    assert "| far | 1 | 1 | 0 | 1 |" in row("far", wide) and HEADER.startswith("| match |")
-    assert row("none", []) == "| none | 0 | 0 | - | - | - |"
+    assert len(straight) == 1 and straight[0].reached and straight[0].late and straight[0].from_spot
+    assert "| far | 1 | 1 | 0 | 0 | 1 |" in row("far", wide) and HEADER.startswith("| match |")
+    assert row("none", []) == "| none | 0 | 0 | - | - | - | - |"
+
+
+def test_the_keeper_tool_tells_a_shot_he_had_only_by_setting_off_at_once(tmp_path):
+    """Our goalkeeper at (-50, 1.5), facing up the field: a shot from (-35, 0) into the goal 5 m to
+    the other side of the middle is his if he sets off as it is struck (moved as rcssserver moves
+    him), not a cycle later; 6.5 m across, not even at once."""
+    (near := tmp_path / "near").mkdir()
+    (far := tmp_path / "far").mkdir()
+    (shot,) = shots(write_shot(near, (-50.0, 1.5), -5.0))
+    assert shot.reached and not shot.late
+    (wide,) = shots(write_shot(far, (-50.0, 3.0), -6.0))
+    assert not wide.reached
 
 
 # A child that, sent SIGTERM, writes which signal it got (its clean-up) and leaves.
