@@ -239,7 +239,27 @@ def test_goalkeeper_guards_catches_clears():
     assert d.method == "moveTo" and d.action.target.x < -46  # far ball: a few metres out, in the middle
     near = decide(state((-51.0, 0.0), ball=(-35.0, 10.0), **keeper), 1, 11, {})
     spot = (near.action.target.x, near.action.target.y)
-    assert near.method == "moveTo" and -49.0 < spot[0] < -46.0 and 1.0 < spot[1] < 3.0  # towards the ball
+    assert near.method == "moveTo" and -49.0 < spot[0] < -46.0 and 2.0 < spot[1] < 4.0  # towards the ball
+
+
+def off_line(point, a, b):
+    """How far ``point`` is from the line through ``a`` and ``b``."""
+    (ax, ay), (bx, by), (px, py) = a, b, point
+    return abs((bx - ax) * (py - ay) - (by - ay) * (px - ax)) / math.dist(a, b)
+
+
+@pytest.mark.parametrize("ball", [(-50.5, 15.9), (-40.0, -12.0), (-30.0, 0.0)])
+def test_the_goalkeepers_spot_is_as_far_from_a_shot_at_either_post(ball):
+    # By the goal line 16 m out, his spot on the line to the goal's centre was 1.2 m off a shot at the
+    # near post and 0.5 m off one at the far post: HELIOS base shot past him at the near post.
+    spot = guard_spot(ball)
+    near, far = (-52.5, math.copysign(7.01, ball[1] or 1.0)), (-52.5, -math.copysign(7.01, ball[1] or 1.0))
+    assert off_line(spot, ball, near) == pytest.approx(off_line(spot, ball, far), abs=1e-6)
+    assert spot[0] > -52.5 and abs(spot[1]) < 7.01  # in front of his goal
+    if ball[0] < -50.0:  # so tight that both are well within his catch where he stands
+        assert off_line(spot, ball, near) < 0.8
+        centre_line = (-52.0, 3.97)  # the spot before: 4 m out on the line to the goal's centre
+        assert off_line(centre_line, ball, near) > 2 * off_line(centre_line, ball, far)
 
 
 def test_the_goalkeeper_keeps_to_his_guard_spot_within_the_move_skills_tolerance():
@@ -259,6 +279,24 @@ def test_the_goalkeeper_closes_down_an_opponent_through_on_goal():
     assert d.method == "intercept" and "one on one" in d.why
     loose = decide(state((-50.0, 0.0), ball=(-41.5, 2.0), **keeper), 1, 11, {})
     assert loose.method != "intercept"  # nobody on it: keep the goal (a defender goes for it)
+
+
+def test_the_goalkeeper_goes_for_a_shot_at_our_goal_as_soon_as_it_is_struck():
+    keeper, spot = dict(number=1), guard_spot((-38.0, 8.0))
+
+    def shot_state(towards, speed):
+        angle = math.atan2(towards[1] - 8.0, towards[0] + 38.0)
+        st = state(spot, ball=(-38.0, 8.0), **keeper)
+        velocity = Velocity(vx=10.0 * speed * math.cos(angle), vy=10.0 * speed * math.sin(angle))
+        return st.model_copy(update={"ball": st.ball.model_copy(update={"velocity": velocity})})
+
+    # 15 m out, struck at the far post: he sets off at once (before, he kept to his spot until it was 8 m off).
+    d = decide(shot_state((-52.5, -3.5), 2.5), 1, 11, {})
+    assert d.method == "intercept" and d.why == "a shot at our goal"
+    assert decide(shot_state((-52.5, 7.5), 2.5), 1, 11, {}).why == "a shot at our goal"  # just by the post
+    wide = decide(shot_state((-52.5, -12.0), 2.5), 1, 11, {})  # rolling wide of the goal
+    slow = decide(shot_state((-52.5, 0.0), 0.6), 1, 11, {})  # a ball that stops short of the line
+    assert "a shot at our goal" not in (wide.why, slow.why)
 
 
 def test_at_our_set_piece_pass_back_or_kick_long_never_dribble():

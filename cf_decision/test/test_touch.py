@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 from cf_decision.touch import LastTouch
-from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, Team, WorldState
+from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, Team, Velocity, WorldState
 
 
-def seen(ball, players, ball_age=0):
+def seen(ball, players, ball_age=0, time=10, velocity=None):
     return WorldState(
-        time=10,
-        ball=Ball(positioning=AbsolutePositioning(x=ball[0], y=ball[1]), age=ball_age),
+        time=time,
+        ball=Ball(
+            positioning=AbsolutePositioning(x=ball[0], y=ball[1]),
+            velocity=Velocity(vx=10.0 * velocity[0], vy=10.0 * velocity[1]) if velocity else None,
+            age=ball_age,
+        ),
         players=tuple(
             Player(player_number=n, which_team=team, positioning=AbsolutePositioning(x=x, y=y), age=age)
             for n, team, x, y, age in players
@@ -37,4 +41,23 @@ def test_the_side_whose_men_alone_are_at_the_ball_touched_it_last():
     touch.seen(seen((-44.0, 1.0), [(9, Team.OPP, -44.5, 1.0, 1)]))
     assert touch.team is Team.OPP
     touch.played_by_mate()  # a team-mate announced his pass
+    assert touch.team is Team.OUR
+
+
+def test_a_ball_rolling_on_its_course_past_a_team_mate_was_not_touched_by_him():
+    touch = LastTouch()
+    shooter = [(9, Team.OPP, -35.5, 0.0, 0)]
+    touch.seen(seen((-35.0, 0.0), shooter, time=1, velocity=(-2.5, 0.0)))
+    assert touch.team is Team.OPP
+    # Two cycles on it passes our defender a metre off, as fast and where rolling on puts it: still theirs.
+    by = [(4, Team.OUR, -39.9, 1.0, 0)]
+    touch.seen(seen((-35.0 - 2.5 - 2.35, 0.1), by, time=3, velocity=(-2.21, 0.0)))
+    assert touch.team is Team.OPP
+    # He turned it: off its course and slowed, his.
+    touch.seen(seen((-41.0, 1.5), [(4, Team.OUR, -40.5, 1.0, 0)], time=4, velocity=(-0.5, 1.0)))
+    assert touch.team is Team.OUR
+    # A ball still by a man may be at his feet: no course to follow.
+    touch = LastTouch()
+    touch.seen(seen((-40.0, 0.0), shooter, time=1, velocity=(0.0, 0.0)))
+    touch.seen(seen((-40.0, 0.0), [(4, Team.OUR, -40.5, 0.0, 0)], time=2, velocity=(0.0, 0.0)))
     assert touch.team is Team.OUR

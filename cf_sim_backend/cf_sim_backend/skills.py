@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from cf_lang.ontology import actions as act
 from cf_lang.ontology.actions import pass_speed
 from cf_sim_backend import intercept, kick_plan
-from cf_sim_backend.embedded.physics import tackle_failure
+from cf_sim_backend.embedded.physics import in_own_penalty_area, tackle_failure
 from cf_sim_backend.perception import to_own_frame
 from cf_sim_backend.world import (
     Side,
@@ -245,7 +245,10 @@ def run_distances(world: World, me: SimPlayer, dashes: int, speed: float | None 
 def _meeting(world: World, me: SimPlayer) -> intercept.Meeting | None:
     b = world.ball
     runner = intercept.Runner(me.x, me.y, me.vx, me.vy, me.body)
-    reach = INTERCEPT_REACH * world.params.kickable_distance
+    reach = world.params.kickable_distance
+    if me.goalie and in_own_penalty_area(world, me):
+        reach = max(reach, world.params.catchable_area)  # he catches it there: the decision asks once in reach
+    reach *= INTERCEPT_REACH
     return intercept.meeting(world.params, runner, (b.x, b.y, b.vx, b.vy), reach, INTERCEPT_HORIZON)
 
 

@@ -296,6 +296,21 @@ def test_a_ball_close_beside_the_player_is_chased_sideways_and_a_far_one_after_a
     assert cmd[0] == "turn"
 
 
+def test_a_goalkeeper_in_his_area_plans_to_meet_a_shot_where_it_comes_within_his_catch():
+    def meeting(goalie):
+        sim = sim_with((Side.LEFT, 1, -50.0, 0.0, 0.0))
+        me = sim.world.player(Side.LEFT, 1)
+        me.goalie = goalie
+        ball = sim.world.ball
+        angle = math.atan2(4.2 + 4.0, -52.5 + 38.0)  # struck from (-38, -4) at the far post
+        ball.x, ball.y, ball.vx, ball.vy = -38.0, -4.0, 2.5 * math.cos(angle), 2.5 * math.sin(angle)
+        return intercept_point(sim.world, me)
+
+    *_, caught = meeting(goalie=True)
+    *_, kicked = meeting(goalie=False)
+    assert caught == 4 and kicked == 5  # his catch reaches further than a kick
+
+
 @pytest.mark.parametrize("velocity", [(0.0, 2.0), (-1.5, 1.0), (1.0, -0.5)])
 def test_a_rolling_ball_is_met_where_its_path_and_the_player_first_meet_after_one_turn_at_most(velocity):
     sim = sim_with((Side.LEFT, 6, 0.0, 0.0, 0.0))
