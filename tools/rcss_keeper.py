@@ -6,7 +6,7 @@ A MATCH_DIR is what ``tools/rcss_match.py --game-log --out DIR`` writes (``rcss_
 ``match-N``); only its game log (``*.rcg``) is read. A shot on target is an opponent's kick in play
 from within SHOT_RANGE of our goal (the last of his touches in a row) whose ball, rolling on as it
 left the foot, would cross our goal line between the posts. For each: could our goalkeeper have
-been within CATCH_L of the ball before it crossed, moved as rcssserver moves a player
+been within his catch (``CATCH_REACH``, 1.2 m) of the ball before it crossed, moved as rcssserver moves a player
 (``cf_sim_backend.intercept``: a dash at any angle off the body, or turns then dashes, from his
 body and speed in the game log), setting off in the cycle the ball was first seen rolling, or a
 cycle later; and from the spot the decision sends him to guard the goal
@@ -30,7 +30,7 @@ from rcss_picture import bodies
 from rcss_series import GOAL_X, kick_events
 
 from cf_decision import reach
-from cf_decision.goalkeeper import guard_spot
+from cf_decision.goalkeeper import CATCH_REACH, guard_spot
 from cf_lang.ontology import FIELD
 from cf_sim_backend import intercept
 from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
@@ -38,7 +38,6 @@ from cf_sim_backend.world import Params
 
 SHOT_RANGE = 30.0  # m from our goal's centre: a kick from further is not counted as a shot
 TOUCHES_APART = 2  # cycles: a kicker's touches this close together are one kick (the shot is the last)
-CATCH_L = 1.2  # m: rcssserver's catchable_area_l (a catch straight at the ball has it this far out)
 SERVER = Params()  # rcssserver's default player type: dash, speed, decay, turn
 
 
@@ -97,13 +96,13 @@ def shots(match: Path, team: str = "CF") -> list[Shot]:
 
 
 def catches(keeper: intercept.Runner, path: list[tuple[float, float]], late: int) -> bool:
-    """Whether ``keeper``, drifting ``late`` cycles before he sets off, can be within CATCH_L of a
+    """Whether ``keeper``, drifting ``late`` cycles before he sets off, can be within CATCH_REACH of a
     point of ``path`` (where the ball is after 1, 2, ... cycles) by the cycle the ball is there."""
     for _ in range(late):
         x, y, decay = keeper.x + keeper.vx, keeper.y + keeper.vy, SERVER.player_decay
         keeper = dataclasses.replace(keeper, x=x, y=y, vx=keeper.vx * decay, vy=keeper.vy * decay)
     return any(
-        intercept.cycles_to(SERVER, keeper, x, y, CATCH_L, n - late) is not None
+        intercept.cycles_to(SERVER, keeper, x, y, CATCH_REACH, n - late) is not None
         for n, (x, y) in enumerate(path, start=1)
         if n > late
     )
