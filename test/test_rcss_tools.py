@@ -509,14 +509,18 @@ def test_the_map_says_where_a_team_mate_standing_would_have_been_found(tmp_path)
 
 def test_the_line_view_says_where_a_ball_in_behind_their_line_was_there(tmp_path):
     """CF 9 kicks from the middle; PYRUS's line is its man 2 at (20, -20) (its keeper is the last man);
-    CF 10 stands on the line at y = 20. The lane behind the defender is closed, its mirror open."""
-    where = {("l", 9): (0.0, 0.0), ("l", 10): (18.5, 20.0), ("r", 2): (20.0, -20.0), ("r", 1): (50.0, 0.0)}
+    CF 10 stands on the line at y = 20, CF 11 at y = -21. The lane behind the defender is closed, its
+    mirror open."""
+    where = {("l", 9): (0.0, 0.0), ("l", 10): (18.5, 20.0), ("l", 11): (18.0, -21.0)}
+    where |= {("r", 2): (20.0, -20.0), ("r", 1): (50.0, 0.0)}
     write_one_kick(tmp_path, where)
     lanes = line_lanes(tmp_path, "middle third", "CF", margin=1)
     assert lanes[("kicks", 20)] == 1 and lanes[("open", 20)] == 1 and lanes[("ours", 20)] == 1
+    assert lanes[("his", 20)] == 1  # and the ball in behind was there for him, from where he stood
+    assert lanes[("ours", -20)] == 1 and lanes[("his", -20)] == 0  # on the line, behind which their man is
     assert lanes[("open", 25)] == 1 and lanes[("ours", 25)] == 0  # open, but nobody of ours there
     assert lanes[("open", -25)] == 0  # the defender at (20, -20) has that ball first
-    assert "| 20 | 1 | 100 | 100 |" in line_table(lanes)
+    assert "| 20 | 1 | 100 | 100 | 1 |" in line_table(lanes)
     assert line_lanes(tmp_path, "our third", "CF") == {}
     # Straight ahead of the ball a pass meets him before the line: to his feet, not in behind.
     assert not in_behind((0.5, 0.0), [], 20.0, 0.0, 1) and in_behind((0.5, 0.0), [], 20.0, 25.0, 1)

@@ -28,7 +28,9 @@ standing LINE_SHORT onside of their offside line (their second-last man, or the 
 and a pass aimed LINE_LEADS ahead of him and LINE_SIDES to his side; the lane is open when such a
 ball is first within his reach beyond the line, ``--margin`` cycles or more before any opponent
 could have it. Beside it: how often one of ours stood on the line in that lane (within ON_LINE
-onside of it and of the lane). Open lanes where ours seldom stood say where a forward should wait.
+onside of it and of the lane), and at how many kicks such a ball was there for him, from where he
+stood. Open lanes where ours seldom stood say where a forward should wait; the last column says how
+often a ball in behind was really on for the man who waited there.
 """
 
 from __future__ import annotations
@@ -163,11 +165,19 @@ def offside_x(ball: tuple[float, float], opponents: list[reach.Runner]) -> float
     return max(xs[1], ball[0], 0.0) if len(xs) >= 2 else None
 
 
-def in_behind(ball: tuple[float, float], opponents: list[reach.Runner], line: float, y: float, margin: int) -> bool:
-    """Whether a team-mate standing LINE_SHORT onside of ``line`` at ``y`` gets a ball in behind it:
-    aimed LINE_LEADS ahead of him and LINE_SIDES across (kicked as the decision kicks a pass), first
-    within his reach beyond the line, ``margin`` cycles or more before any opponent."""
-    me = (line - LINE_SHORT, y)
+def in_behind(
+    ball: tuple[float, float],
+    opponents: list[reach.Runner],
+    line: float,
+    y: float,
+    margin: int,
+    me: tuple[float, float] | None = None,
+) -> bool:
+    """Whether a team-mate standing LINE_SHORT onside of ``line`` at ``y`` (or at ``me``) gets a ball in
+    behind it: aimed LINE_LEADS ahead of him and LINE_SIDES across (kicked as the decision kicks a
+    pass), first within his reach beyond the line, ``margin`` cycles or more before any opponent."""
+    me = (line - LINE_SHORT, y) if me is None else me
+    y = me[1]
     half_width = FIELD.width / 2 - 2.0
     for lead in LINE_LEADS:
         for side in LINE_SIDES:
@@ -183,7 +193,8 @@ def in_behind(ball: tuple[float, float], opponents: list[reach.Runner], line: fl
 def line_lanes(match: Path, third: str, team: str = "CF", margin: int = 1) -> Counter:
     """For our kicks in play from ``third`` in one match, per lane y: ("kicks", y) how many had their line
     within 40 m of the lane's spot, ("open", y) at how many a ball in behind was there, ("ours", y) at
-    how many one of ours stood on the line there."""
+    how many one of ours stood on the line there, ("his", y) at how many a ball in behind was there for
+    one of those who stood there, from where he stood (he is seldom LINE_SHORT onside)."""
     out: Counter = Counter()
     for where, ball, mates, opponents in our_kicks(match, team):
         line = offside_x(ball, opponents) if where == third else None
@@ -194,20 +205,25 @@ def line_lanes(match: Path, third: str, team: str = "CF", margin: int = 1) -> Co
                 continue
             out[("kicks", y)] += 1
             out[("open", y)] += in_behind(ball, opponents, line, y, margin)
-            out[("ours", y)] += any(line - ON_LINE <= x <= line and abs(my - y) <= ON_LINE for x, my in mates)
+            there = [(x, my) for x, my in mates if line - ON_LINE <= x <= line and abs(my - y) <= ON_LINE]
+            out[("ours", y)] += bool(there)
+            out[("his", y)] += any(in_behind(ball, opponents, line, y, margin, me) for me in there)
     return out
 
 
 def line_table(lanes: Counter) -> str:
-    """One row per lane, from y = +30 down: kicks, open share (%), ours-on-the-line share (%)."""
+    """One row per lane, from y = +30 down: kicks, open share (%), ours-on-the-line share (%), and how
+    many kicks had a ball in behind there for the one of ours who stood there."""
     rows = [
-        "| lane y (m) | kicks | a ball in behind their line was there (%) | one of ours stood on the line there (%) |",
-        "|---:|---:|---:|---:|",
+        "| lane y (m) | kicks | a ball in behind their line was there (%) | one of ours stood on the line there (%) "
+        "| a ball in behind for him, from where he stood (kicks) |",
+        "|---:|---:|---:|---:|---:|",
     ]
     for y in reversed(GRID_Y):
         n = lanes[("kicks", y)]
         if n:
-            rows.append(f"| {y} | {n} | {100 * lanes[('open', y)] // n} | {100 * lanes[('ours', y)] // n} |")
+            open_, ours = 100 * lanes[("open", y)] // n, 100 * lanes[("ours", y)] // n
+            rows.append(f"| {y} | {n} | {open_} | {ours} | {lanes[('his', y)]} |")
     return "\n".join(rows)
 
 
