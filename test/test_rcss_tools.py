@@ -523,7 +523,7 @@ def test_the_line_view_says_where_a_ball_in_behind_their_line_was_there(tmp_path
     assert "| 20 | 1 | 100 | 100 | 1 |" in line_table(lanes)
     assert line_lanes(tmp_path, "our third", "CF") == {}
     # Straight ahead of the ball a pass meets him before the line: to his feet, not in behind.
-    assert not in_behind((0.5, 0.0), [], 20.0, 0.0, 1) and in_behind((0.5, 0.0), [], 20.0, 25.0, 1)
+    assert not in_behind((0.5, 0.0), [], 20.0, (19.5, 0.0), 1) and in_behind((0.5, 0.0), [], 20.0, (19.5, 25.0), 1)
     # One opponent only: no line to stand on.
     alone = tmp_path / "alone"
     alone.mkdir()

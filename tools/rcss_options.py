@@ -166,22 +166,15 @@ def offside_x(ball: tuple[float, float], opponents: list[reach.Runner]) -> float
 
 
 def in_behind(
-    ball: tuple[float, float],
-    opponents: list[reach.Runner],
-    line: float,
-    y: float,
-    margin: int,
-    me: tuple[float, float] | None = None,
+    ball: tuple[float, float], opponents: list[reach.Runner], line: float, me: tuple[float, float], margin: int
 ) -> bool:
-    """Whether a team-mate standing LINE_SHORT onside of ``line`` at ``y`` (or at ``me``) gets a ball in
-    behind it: aimed LINE_LEADS ahead of him and LINE_SIDES across (kicked as the decision kicks a
-    pass), first within his reach beyond the line, ``margin`` cycles or more before any opponent."""
-    me = (line - LINE_SHORT, y) if me is None else me
-    y = me[1]
+    """Whether a team-mate standing at ``me`` (onside of ``line``) gets a ball in behind it: aimed
+    LINE_LEADS ahead of him and LINE_SIDES across (kicked as the decision kicks a pass), first within
+    his reach beyond the line, ``margin`` cycles or more before any opponent."""
     half_width = FIELD.width / 2 - 2.0
     for lead in LINE_LEADS:
         for side in LINE_SIDES:
-            target = (min(FIELD.length / 2 - 3.0, me[0] + lead), max(-half_width, min(half_width, y + side)))
+            target = (min(FIELD.length / 2 - 3.0, me[0] + lead), max(-half_width, min(half_width, me[1] + side)))
             if not 4.0 <= math.dist(ball, target) <= 40.0:
                 continue
             at = received(ball, target, me, opponents, margin)
@@ -204,10 +197,10 @@ def line_lanes(match: Path, third: str, team: str = "CF", margin: int = 1) -> Co
             if math.dist(ball, (line, y)) > 40.0:
                 continue
             out[("kicks", y)] += 1
-            out[("open", y)] += in_behind(ball, opponents, line, y, margin)
+            out[("open", y)] += in_behind(ball, opponents, line, (line - LINE_SHORT, y), margin)
             there = [(x, my) for x, my in mates if line - ON_LINE <= x <= line and abs(my - y) <= ON_LINE]
             out[("ours", y)] += bool(there)
-            out[("his", y)] += any(in_behind(ball, opponents, line, y, margin, me) for me in there)
+            out[("his", y)] += any(in_behind(ball, opponents, line, me, margin) for me in there)
     return out
 
 
