@@ -30,8 +30,7 @@ from rcss_picture import bodies
 from rcss_series import GOAL_X, kick_events
 
 from cf_decision import reach
-from cf_decision.goalkeeper import CATCH_REACH, guard_spot
-from cf_lang.ontology import FIELD
+from cf_decision.goalkeeper import CATCH_REACH, guard_spot, into_our_goal
 from cf_sim_backend import intercept
 from cf_sim_backend.embedded.rcg import GOALIE  # the game log's player state bit of a goalkeeper
 from cf_sim_backend.world import Params
@@ -68,8 +67,8 @@ def shots(match: Path, team: str = "CF") -> list[Shot]:
         if math.dist(kicked, (-GOAL_X, 0.0)) > SHOT_RANGE:
             continue
         path = reach.ball_path(ball, (after[0] - ball[0], after[1] - ball[1]))
-        crossing = next((n for n, (x, _) in enumerate(path) if x <= -GOAL_X), None)
-        if crossing is None or abs(path[crossing][1]) > FIELD.goal_width / 2:
+        crossing = into_our_goal(path)
+        if crossing is None:
             continue
         keeper = next((p[1] for p in frames[i][3] if p[0] == side and p[6] & GOALIE), None)
         him = body.get((frames[i][0], keeper))

@@ -69,8 +69,16 @@ def shot_at_our_goal(state: WorldState, ball: tuple[float, float]) -> bool:
     velocity = reach.per_cycle(state.ball.velocity if state.ball else None)
     if math.hypot(*velocity) < SHOT_PACE or velocity[0] >= 0.0:
         return False
-    crossing = next(((x, y) for x, y in reach.ball_path(ball, velocity) if x <= OWN_GOAL[0]), None)
-    return crossing is not None and abs(crossing[1] - OWN_GOAL[1]) <= FIELD.goal_width / 2 + POST_MARGIN
+    return into_our_goal(reach.ball_path(ball, velocity), POST_MARGIN) is not None
+
+
+def into_our_goal(path: list[tuple[float, float]], margin: float = 0.0) -> int | None:
+    """The index of the first point of ``path`` on or beyond our goal line if it is between the posts
+    (or within ``margin`` outside one); None: the path stops short of the line or crosses it wide."""
+    n = next((n for n, (x, _) in enumerate(path) if x <= OWN_GOAL[0]), None)
+    if n is None or abs(path[n][1] - OWN_GOAL[1]) > FIELD.goal_width / 2 + margin:
+        return None
+    return n
 
 
 def guard_spot(ball: tuple[float, float]) -> tuple[float, float]:
