@@ -17,6 +17,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 from proctree import run_passing_on
 from rcss_ball_use import ball_use, game_log, keeping_table, moves_table, reason, table, territory, territory_table
 from rcss_belief_error import errors as belief_errors
+from rcss_belief_error import line_errors
+from rcss_belief_error import line_table as believed_line_table
 from rcss_belief_error import table as belief_table
 from rcss_drill import HOLD, Try, ended_for_them, placement, situations, spread, tries_of
 from rcss_drill import table as drill_table
@@ -640,6 +642,47 @@ def test_what_a_decision_believed_of_the_ball_is_set_against_the_game_logs_truth
     ]
     rows = belief_table(found)
     assert rows[2].startswith("| 10-20 m | 2 | 0.25 | 0.050 |")
+
+
+def test_the_believed_offside_line_and_where_a_forward_sent_to_it_stood_are_set_against_the_truth(tmp_path):
+    """CF plays on the right (its frame turns x round): PYRUS's second-last man stands at server
+    x = -20, so their line is at 20 in CF's frame, then -25 (25). CF's 9 believed it at 19 and stood
+    3 m short; at 25 he believed 25.5 and stood 0.5 m beyond it (offside); 7, not sent there, counts
+    only for the line; a request logged before the line was (no ``line``) or in a pause is not read."""
+    lines = ["ULG6", "(team 1 PYRUS CF 0 0)", "(playmode 1 play_on)"]
+
+    def show(t, second_last, nine):
+        where = {("l", 1): (-50.0, 0.0), ("l", 2): (second_last, 5.0), ("l", 3): (-5.0, 0.0)}
+        where |= {("r", 9): (nine, 10.0), ("r", 7): (10.0, 0.0)}
+        return f"(show {t} ((b) 0 0 0 0) {players_at(where, dict.fromkeys(where, 0), goalies=(('l', 1),))})"
+
+    lines += [show(2, -20.0, -17.0), show(3, -25.0, -25.5), "(playmode 4 foul_charge_l)", show(4, -25.0, -25.5)]
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    logs = tmp_path / "logs-CF"
+    logs.mkdir()
+
+    def request(number, t, why, line):
+        told = f" | line {line}" if line is not None else ""
+        return (
+            f"[INFO] [1.0] [CF_{number}_decision]: request t={t} moveTo: {why} | me 17.0 -10.0 | "
+            f"ball 0.0 0.0 v 0.0 0.0 age 0{told} | claims  | passes  | (exec Player moveTo)"
+        )
+
+    (logs / "CF_9_rcss_player.log").write_text(
+        "\n".join(
+            [
+                request(9, 2, "forward: on their last line", "19.0"),
+                request(9, 3, "forward: on their last line, watch the ball", "25.5"),
+                request(9, 3, "forward: on their last line", None),  # logged before the line was
+                request(9, 4, "forward: on their last line", "25.0"),  # a pause
+                request(7, 2, "midfielder: hold position", "20.0"),
+            ]
+        )
+        + "\n"
+    )
+    found = line_errors(tmp_path)
+    assert [(e.believed, e.true, e.short) for e in found] == [(19.0, 20.0, 3.0), (25.5, 25.0, -0.5), (20.0, 20.0, None)]
+    assert believed_line_table(found)[2] == "| 3 | 0.50 | 0.50 | 2 | 1.2 | -0.5 to 3.0 |"
 
 
 def write_shot(tmp_path: Path, keeper: tuple[float, float], aim_y: float) -> Path:

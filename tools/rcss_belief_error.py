@@ -1,13 +1,21 @@
-"""How far off our players' picture of the ball was, against the game log's truth, by its distance.
+"""How far off our players' picture of the ball was, against the game log's truth, by its distance;
+and how far off their picture of the opponents' offside line, and how near it the forwards sent
+there stood.
 
     python tools/rcss_belief_error.py MATCH_DIR [MATCH_DIR ...] [--team CF]
 
 A MATCH_DIR is what ``tools/rcss_match.py --game-log --log-requests --out DIR`` writes
 (``rcss_series``: its ``match-N``). Each new request a decision logs (``request t=T ... | me X Y |
-ball X Y v VX VY age A``) says where the player believed himself and the ball and how fast he
-believed it rolled; the game log says where it was. Counted: balls seen that cycle (age 0) that
-were rolling (BALL_MOVING or faster). One row per band of the believed distance from the player.
-The embedded simulator's perception noise is set from this table (docs/simulator.md).
+ball X Y v VX VY age A | line X``) says where the player believed himself and the ball, how fast he
+believed it rolled and where he believed their offside line; the game log says where they were.
+Counted for the ball: balls seen that cycle (age 0) that were rolling (BALL_MOVING or faster). One
+row per band of the believed distance from the player. The embedded simulator's perception noise
+is set from this table (docs/simulator.md).
+
+The line (a second table, requests in play on): the believed line against the true one (the
+second-last opponent's x, or the ball's if further up, never short of the halfway line, as
+``cf_decision.situation.offside_line`` takes it), and for the requests whose reason was ON_LINE the
+player's true x short of the true line (negative: beyond it, offside).
 """
 
 from __future__ import annotations
@@ -21,13 +29,18 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rcss_ball_use import game_log, match_parser
-from rcss_series import side_of
+from rcss_series import read_rcg, side_of
 
 BALL_MOVING = 0.05  # m/cycle
+ON_LINE = "forward: on their last line"  # the decision's reason for a forward sent to their line
 BANDS = ((0.0, 2.0), (2.0, 5.0), (5.0, 10.0), (10.0, 20.0), (20.0, 40.0), (40.0, 200.0))  # metres
 _NUM = r"(-?[\d.]+)"
 _REQUEST = re.compile(
     rf"\[(\w+)_(\d+)_decision\]: request t=(\d+) .*?\| me {_NUM} {_NUM} \| ball {_NUM} {_NUM} v {_NUM} {_NUM} age (\d+)"
+)
+
+_LINE = re.compile(
+    rf"\[(\w+)_(\d+)_decision\]: request t=(\d+) \w+: ([^|]*?)(?:, watch the ball)? \|.*? \| line {_NUM} \|"
 )
 
 
@@ -71,6 +84,63 @@ def errors(match: Path, team: str = "CF") -> list[Error]:
     return out
 
 
+@dataclass(frozen=True)
+class LineError:
+    believed: float  # m: the offside line's x as the player believed it (his frame)
+    true: float  # m: the true one
+    short: float | None  # m: for a player sent to the line, his true x short of the true line
+
+
+def true_lines(rcg: Path, side: str) -> dict[int, tuple[float, dict[int, float]]]:
+    """Cycle in play on -> their offside line and our players' x, in our frame (the first show line
+    of each cycle)."""
+    sign = 1.0 if side == "l" else -1.0
+    out: dict[int, tuple[float, dict[int, float]]] = {}
+    for t, mode, ball, players in read_rcg(rcg):
+        if mode != "play_on" or t in out:
+            continue
+        theirs = sorted((sign * p[2] for p in players if p[0] != side), reverse=True)
+        if len(theirs) >= 2:
+            out[t] = (max(theirs[1], sign * ball[0], 0.0), {p[1]: sign * p[2] for p in players if p[0] == side})
+    return out
+
+
+def line_errors(match: Path, team: str = "CF") -> list[LineError]:
+    """Every request of ``team``'s decisions in play on that told a line, in one match."""
+    rcg = game_log(match)
+    lines = true_lines(rcg, side_of(rcg, team))
+    out = []
+    for log in sorted(match.glob(f"logs-{team}/*.log")):
+        for text in log.read_text(errors="replace").splitlines():
+            m = _LINE.search(text)
+            if not m or m.group(1) != team or int(m.group(3)) not in lines:
+                continue
+            true, ours = lines[int(m.group(3))]
+            number = int(m.group(2))
+            sent = m.group(4) == ON_LINE and number in ours
+            out.append(LineError(float(m.group(5)), true, true - ours[number] if sent else None))
+    return out
+
+
+def line_table(found: list[LineError]) -> list[str]:
+    """The markdown rows: the believed line's error, and how far short of it the forwards sent there stood."""
+    off = sorted(abs(e.believed - e.true) for e in found)
+    short = sorted(e.short for e in found if e.short is not None)
+    rows = [
+        "| their line: requests | off, median (m) | 90% within | sent to it | stood short of it: median (m) | quartiles |",
+        "|---:|---:|---:|---:|---:|---:|",
+    ]
+    if not off:
+        return rows
+    quartiles = f"{short[len(short) // 4]:.1f} to {short[(3 * len(short)) // 4]:.1f}" if short else "-"
+    middle = f"{statistics.median(short):.1f}" if short else "-"
+    rows.append(
+        f"| {len(off)} | {statistics.median(off):.2f} | {off[int(0.9 * (len(off) - 1))]:.2f} | {len(short)} "
+        f"| {middle} | {quartiles} |"
+    )
+    return rows
+
+
 def table(found: list[Error]) -> list[str]:
     """The markdown rows: medians and 90th percentiles by band of distance."""
     rows = [
@@ -96,6 +166,9 @@ def main() -> int:
         print("no request lines with a ball seen (was the match played with --log-requests?)")
         return 1
     print("\n".join(table(found)))
+    lines = [e for match in args.matches for e in line_errors(match, args.team)]
+    if lines:  # (request logs before the line was logged have none)
+        print("\n" + "\n".join(line_table(lines)))
     return 0
 
 

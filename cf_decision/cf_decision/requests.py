@@ -19,7 +19,7 @@ from pydantic import BaseModel
 from cf_lang.ontology import AbsolutePositioning, Team, WorldState
 
 from .receive import AWAIT_MAX, Announced
-from .situation import Decision, dist, xy
+from .situation import Decision, dist, offside_line, xy
 
 POSITION_TOLERANCE = 1.0  # m: targets closer than this are one target (a player is ~0.6 m wide)
 ANGLE_TOLERANCE = 0.1  # rad (about 6 degrees)
@@ -141,10 +141,11 @@ def request_text(
     state: WorldState, decision: Decision, claims: dict[int, int], passes: list[Announced], content: str
 ) -> str:
     """One line for a new request (``log_requests``): ``request t=T method: why | me X Y | ball X Y
-    v VX VY age A | claims N:ETA ... | passes P>R@T ... | (exec ...)``.
+    v VX VY age A | line X | claims N:ETA ... | passes P>R@T ... | (exec ...)``.
 
     Everything the choice was made on that a match analysis cannot read back from the game log:
-    where the player believed himself and the ball, the team-mates' claims on the ball (``N:ETA``,
+    where the player believed himself and the ball, their offside line as he believed it
+    (:func:`situation.offside_line`), the team-mates' claims on the ball (``N:ETA``,
     cycles) and the passes they announced that may still be awaited (to team-mate R, or ``pt`` for
     a point; ``@T``: the cycle the ball is taken to leave the foot), then the very request sent.
     """
@@ -156,8 +157,10 @@ def request_text(
         v = ball.velocity
         speed = f" v {_m(v.vx)} {_m(v.vy)}" if v else ""
         parts.append(f"ball {_m(ball.positioning.x)} {_m(ball.positioning.y)}{speed} age {ball.age or 0}")
+        line = offside_line(state, xy(ball.positioning))
+        parts.append(f"line {_m(line)}" if line is not None else "line ?")
     else:
-        parts.append("ball ?")
+        parts.extend(("ball ?", "line ?"))
     parts.append("claims " + " ".join(f"{n}:{eta}" for n, eta in sorted(claims.items())))
     recent = [a for a in passes if state.time - a.kicked <= AWAIT_MAX]
     parts.append("passes " + " ".join(f"{a.passer}>{_receiver(a)}@{a.kicked}" for a in recent))

@@ -79,7 +79,8 @@ def test_the_log_line_of_a_kick_carries_its_aim_and_the_ball_and_opponents_as_be
 def test_a_logged_request_tells_what_it_was_chosen_on():
     me = Player(player_number=7, which_team=Team.OUR, positioning=AbsolutePositioning(x=-10.04, y=3.0))
     ball = Ball(positioning=AbsolutePositioning(x=-12.0, y=2.5), velocity=Velocity(vx=8.0, vy=-1.0), age=1)
-    state = WorldState(time=40, me=me, ball=ball, game=Game(time=40))
+    their = [Player(which_team=Team.OPP, positioning=AbsolutePositioning(x=x, y=0.0)) for x in (50.0, 21.04, 30.0)]
+    state = WorldState(time=40, me=me, ball=ball, game=Game(time=40), players=their)
     to_me = act.Pass(to=Player(player_number=7, which_team=Team.OUR))
     to_point = act.Pass(target=AbsolutePositioning(x=5.0, y=5.0))
     passes = [
@@ -90,10 +91,12 @@ def test_a_logged_request_tells_what_it_was_chosen_on():
     run = Decision("moveTo", move(-11.0, 2.0, 100.0), "meet the pass")
     line = request_text(state, run, {9: 3, 4: 12}, passes, "(exec Player moveTo ...)")
     assert line == (
-        "request t=40 moveTo: meet the pass | me -10.0 3.0 | ball -12.0 2.5 v 8.0 -1.0 age 1"
+        "request t=40 moveTo: meet the pass | me -10.0 3.0 | ball -12.0 2.5 v 8.0 -1.0 age 1 | line 30.0"
         " | claims 4:12 9:3 | passes 4>7@31 6>pt@35 | (exec Player moveTo ...)"
     )
     still = ball.model_copy(update={"velocity": Velocity(vx=-0.01, vy=0.0)})
     assert "v 0.0 0.0 age" in request_text(state.model_copy(update={"ball": still}), run, {}, [], "(exec)")  # no -0.0
     blind = request_text(WorldState(time=3, game=Game(time=3)), run, {}, [], "(exec)")
-    assert blind == "request t=3 moveTo: meet the pass | me ? | ball ? | claims  | passes  | (exec)"
+    assert blind == "request t=3 moveTo: meet the pass | me ? | ball ? | line ? | claims  | passes  | (exec)"
+    alone = state.model_copy(update={"players": their[:1]})  # one opponent known: the line cannot be told
+    assert "age 1 | line ? | claims" in request_text(alone, run, {}, [], "(exec)")
