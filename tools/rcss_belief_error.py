@@ -24,6 +24,7 @@ import math
 import re
 import statistics
 import sys
+from collections.abc import Container, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -67,21 +68,24 @@ def errors(match: Path, team: str = "CF") -> list[Error]:
     rcg = game_log(match)
     balls = truth(rcg, side_of(rcg, team))
     out = []
-    for log in sorted(match.glob(f"logs-{team}/*.log")):
-        for line in log.read_text(errors="replace").splitlines():
-            m = _REQUEST.search(line)
-            if not m or m.group(1) != team or int(m.group(10)) != 0 or int(m.group(3)) not in balls:
-                continue
-            me_x, me_y, x, y, vx, vy = (float(m.group(i)) for i in range(4, 10))
-            tx, ty, tvx, tvy = balls[int(m.group(3))]
-            if math.hypot(tvx, tvy) < BALL_MOVING:
-                continue
-            out.append(
-                Error(
-                    math.hypot(x - me_x, y - me_y), math.hypot(x - tx, y - ty), math.hypot(vx / 10 - tvx, vy / 10 - tvy)
-                )
-            )
+    for m in _requests(match, team, _REQUEST, balls):
+        me_x, me_y, x, y, vx, vy = (float(m.group(i)) for i in range(4, 10))
+        tx, ty, tvx, tvy = balls[int(m.group(3))]
+        if int(m.group(10)) != 0 or math.hypot(tvx, tvy) < BALL_MOVING:
+            continue
+        out.append(
+            Error(math.hypot(x - me_x, y - me_y), math.hypot(x - tx, y - ty), math.hypot(vx / 10 - tvx, vy / 10 - tvy))
+        )
     return out
+
+
+def _requests(match: Path, team: str, pattern: re.Pattern, cycles: Container[int]) -> Iterator[re.Match]:
+    """``pattern``'s matches in ``team``'s decisions' request lines of one match, at the cycles in ``cycles``."""
+    for log in sorted(match.glob(f"logs-{team}/*.log")):
+        for text in log.read_text(errors="replace").splitlines():
+            m = pattern.search(text)
+            if m and m.group(1) == team and int(m.group(3)) in cycles:
+                yield m
 
 
 @dataclass(frozen=True)
@@ -110,15 +114,11 @@ def line_errors(match: Path, team: str = "CF") -> list[LineError]:
     rcg = game_log(match)
     lines = true_lines(rcg, side_of(rcg, team))
     out = []
-    for log in sorted(match.glob(f"logs-{team}/*.log")):
-        for text in log.read_text(errors="replace").splitlines():
-            m = _LINE.search(text)
-            if not m or m.group(1) != team or int(m.group(3)) not in lines:
-                continue
-            true, ours = lines[int(m.group(3))]
-            number = int(m.group(2))
-            sent = m.group(4) == ON_LINE and number in ours
-            out.append(LineError(float(m.group(5)), true, true - ours[number] if sent else None))
+    for m in _requests(match, team, _LINE, lines):
+        true, ours = lines[int(m.group(3))]
+        number = int(m.group(2))
+        sent = m.group(4) == ON_LINE and number in ours
+        out.append(LineError(float(m.group(5)), true, true - ours[number] if sent else None))
     return out
 
 
