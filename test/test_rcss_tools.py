@@ -646,9 +646,11 @@ def test_what_a_decision_believed_of_the_ball_is_set_against_the_game_logs_truth
 
 def test_the_believed_offside_line_and_where_a_forward_sent_to_it_stood_are_set_against_the_truth(tmp_path):
     """CF plays on the right (its frame turns x round): PYRUS's second-last man stands at server
-    x = -20, so their line is at 20 in CF's frame, then -25 (25). CF's 9 believed it at 19 and stood
-    3 m short; at 25 he believed 25.5 and stood 0.5 m beyond it (offside); 7, not sent there, counts
-    only for the line; a request logged before the line was (no ``line``) or in a pause is not read."""
+    x = -20, so their line is at 20 in CF's frame, then -25 (25). CF's 9, sent to the line, believed
+    it at 19 and stood 3 m short, then believed 25.5 and stood 0.5 m beyond it (offside); after a
+    pause, his request still in force, 1 m short; then he was sent elsewhere. 7, not sent there,
+    counts only for the line; a request logged before the line was (no ``line``) or in a pause
+    tells no line."""
     lines = ["ULG6", "(team 1 PYRUS CF 0 0)", "(playmode 1 play_on)"]
 
     def show(t, second_last, nine):
@@ -657,6 +659,7 @@ def test_the_believed_offside_line_and_where_a_forward_sent_to_it_stood_are_set_
         return f"(show {t} ((b) 0 0 0 0) {players_at(where, dict.fromkeys(where, 0), goalies=(('l', 1),))})"
 
     lines += [show(2, -20.0, -17.0), show(3, -25.0, -25.5), "(playmode 4 foul_charge_l)", show(4, -25.0, -25.5)]
+    lines += ["(playmode 5 play_on)", show(5, -25.0, -24.0), show(6, -25.0, -20.0)]
     (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
     logs = tmp_path / "logs-CF"
     logs.mkdir()
@@ -668,21 +671,24 @@ def test_the_believed_offside_line_and_where_a_forward_sent_to_it_stood_are_set_
             f"ball 0.0 0.0 v 0.0 0.0 age 0{told} | claims  | passes  | (exec Player moveTo)"
         )
 
+    on_line = "forward: on their last line"
     (logs / "CF_9_rcss_player.log").write_text(
         "\n".join(
             [
-                request(9, 2, "forward: on their last line", "19.0"),
-                request(9, 3, "forward: on their last line, watch the ball", "25.5"),
-                request(9, 3, "forward: on their last line", None),  # logged before the line was
-                request(9, 4, "forward: on their last line", "25.0"),  # a pause
+                request(9, 2, on_line, "19.0"),
+                request(9, 3, on_line + ", watch the ball", "25.5"),
+                request(9, 3, on_line, None),  # logged before the line was
+                request(9, 4, on_line, "25.0"),  # a pause: no line counted, but it stays in force
+                request(9, 6, "forward: hold position", "25.0"),
                 request(7, 2, "midfielder: hold position", "20.0"),
             ]
         )
         + "\n"
     )
-    found = line_errors(tmp_path)
-    assert [(e.believed, e.true, e.short) for e in found] == [(19.0, 20.0, 3.0), (25.5, 25.0, -0.5), (20.0, 20.0, None)]
-    assert believed_line_table(found)[2] == "| 3 | 0.50 | 0.50 | 2 | 1.2 | -0.5 to 3.0 |"
+    found, short = line_errors(tmp_path)
+    assert [(e.believed, e.true) for e in found] == [(19.0, 20.0), (25.5, 25.0), (25.0, 25.0), (20.0, 20.0)]
+    assert short == [3.0, -0.5, 1.0]  # cycles 2, 3 and 5
+    assert believed_line_table(found, short)[2] == "| 4 | 0.25 | 0.50 | 3 | 1.0 | -0.5 to 3.0 |"
 
 
 def write_shot(tmp_path: Path, keeper: tuple[float, float], aim_y: float) -> Path:

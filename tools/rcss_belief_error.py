@@ -14,12 +14,14 @@ is set from this table (docs/simulator.md).
 
 The line (a second table, requests in play on): the believed line against the true one (the
 second-last opponent's x, or the ball's if further up, never short of the halfway line, as
-``cf_decision.situation.offside_line`` takes it), and for the requests whose reason was ON_LINE the
-player's true x short of the true line (negative: beyond it, offside).
+``cf_decision.situation.offside_line`` takes it); and for every cycle in play on in which a
+player's request in force (his last one logged) had the reason ON_LINE, his true x short of the
+true line (negative: beyond it, offside).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
 import statistics
@@ -40,9 +42,8 @@ _REQUEST = re.compile(
     rf"\[(\w+)_(\d+)_decision\]: request t=(\d+) .*?\| me {_NUM} {_NUM} \| ball {_NUM} {_NUM} v {_NUM} {_NUM} age (\d+)"
 )
 
-_LINE = re.compile(
-    rf"\[(\w+)_(\d+)_decision\]: request t=(\d+) \w+: ([^|]*?)(?:, watch the ball)? \|.*? \| line {_NUM} \|"
-)
+_WHY = re.compile(r"\[(\w+)_(\d+)_decision\]: request t=(\d+) \w+: ([^|]*?)(?:, watch the ball)? \|")
+_LINE = re.compile(rf" \| line {_NUM} \| ")
 
 
 @dataclass(frozen=True)
@@ -79,12 +80,13 @@ def errors(match: Path, team: str = "CF") -> list[Error]:
     return out
 
 
-def _requests(match: Path, team: str, pattern: re.Pattern, cycles: Container[int]) -> Iterator[re.Match]:
-    """``pattern``'s matches in ``team``'s decisions' request lines of one match, at the cycles in ``cycles``."""
+def _requests(match: Path, team: str, pattern: re.Pattern, cycles: Container[int] | None = None) -> Iterator[re.Match]:
+    """``pattern``'s matches in ``team``'s decisions' request lines of one match, at the cycles in
+    ``cycles`` (None: at any)."""
     for log in sorted(match.glob(f"logs-{team}/*.log")):
         for text in log.read_text(errors="replace").splitlines():
             m = pattern.search(text)
-            if m and m.group(1) == team and int(m.group(3)) in cycles:
+            if m and m.group(1) == team and (cycles is None or int(m.group(3)) in cycles):
                 yield m
 
 
@@ -92,7 +94,6 @@ def _requests(match: Path, team: str, pattern: re.Pattern, cycles: Container[int
 class LineError:
     believed: float  # m: the offside line's x as the player believed it (his frame)
     true: float  # m: the true one
-    short: float | None  # m: for a player sent to the line, his true x short of the true line
 
 
 def true_lines(rcg: Path, side: str) -> dict[int, tuple[float, dict[int, float]]]:
@@ -109,25 +110,36 @@ def true_lines(rcg: Path, side: str) -> dict[int, tuple[float, dict[int, float]]
     return out
 
 
-def line_errors(match: Path, team: str = "CF") -> list[LineError]:
-    """Every request of ``team``'s decisions in play on that told a line, in one match."""
+def line_errors(match: Path, team: str = "CF") -> tuple[list[LineError], list[float]]:
+    """In one match: every request of ``team``'s decisions in play on that told a line; and for each
+    cycle in play on while a player's request in force was ON_LINE, his true x short of the true line."""
     rcg = game_log(match)
     lines = true_lines(rcg, side_of(rcg, team))
-    out = []
-    for m in _requests(match, team, _LINE, lines):
-        true, ours = lines[int(m.group(3))]
-        number = int(m.group(2))
-        sent = m.group(4) == ON_LINE and number in ours
-        out.append(LineError(float(m.group(5)), true, true - ours[number] if sent else None))
-    return out
+    found, whys = [], {}
+    for m in _requests(match, team, _WHY):
+        t, number = int(m.group(3)), int(m.group(2))
+        whys.setdefault(number, []).append((t, m.group(4)))
+        told = _LINE.search(m.string)
+        if told and t in lines:
+            found.append(LineError(float(told.group(1)), lines[t][0]))
+    short = []
+    for number, said in whys.items():
+        said = sorted(said, key=lambda request: request[0])  # (a relaunched player's lines may come later)
+        for (since, why), (until, _) in itertools.pairwise([*said, (max(lines, default=0) + 1, "")]):
+            if why == ON_LINE:
+                short += [
+                    lines[t][0] - lines[t][1][number] for t in range(since, until) if number in lines.get(t, (0, {}))[1]
+                ]
+    return found, short
 
 
-def line_table(found: list[LineError]) -> list[str]:
+def line_table(found: list[LineError], short: list[float]) -> list[str]:
     """The markdown rows: the believed line's error, and how far short of it the forwards sent there stood."""
     off = sorted(abs(e.believed - e.true) for e in found)
-    short = sorted(e.short for e in found if e.short is not None)
+    short = sorted(short)
     rows = [
-        "| their line: requests | off, median (m) | 90% within | sent to it | stood short of it: median (m) | quartiles |",
+        "| their line: requests | off, median (m) | 90% within | cycles a forward was sent to it "
+        "| he stood short of it: median (m) | quartiles |",
         "|---:|---:|---:|---:|---:|---:|",
     ]
     if not off:
@@ -166,9 +178,12 @@ def main() -> int:
         print("no request lines with a ball seen (was the match played with --log-requests?)")
         return 1
     print("\n".join(table(found)))
-    lines = [e for match in args.matches for e in line_errors(match, args.team)]
+    lines, short = [], []
+    for match in args.matches:
+        found_here, short_here = line_errors(match, args.team)
+        lines, short = lines + found_here, short + short_here
     if lines:  # (request logs before the line was logged have none)
-        print("\n" + "\n".join(line_table(lines)))
+        print("\n" + "\n".join(line_table(lines, short)))
     return 0
 
 
