@@ -178,12 +178,12 @@ def main() -> int:
         print("no request lines with a ball seen (was the match played with --log-requests?)")
         return 1
     print("\n".join(table(found)))
-    lines, short = [], []
+    believed, short = [], []
     for match in args.matches:
         found_here, short_here = line_errors(match, args.team)
-        lines, short = lines + found_here, short + short_here
-    if lines:  # (request logs before the line was logged have none)
-        print("\n" + "\n".join(line_table(lines, short)))
+        believed, short = believed + found_here, short + short_here
+    if believed:  # (request logs from before the line was logged have none)
+        print("\n" + "\n".join(line_table(believed, short)))
     return 0
 
 
