@@ -31,8 +31,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import game_log, match_parser
-from rcss_series import read_rcg, side_of
+from rcss_ball_use import game, game_log, match_parser
+from rcss_options import offside_x
+from rcss_series import side_of
+
+from cf_decision import reach
 
 BALL_MOVING = 0.05  # m/cycle
 ON_LINE = "forward: on their last line"  # the decision's reason for a forward sent to their line
@@ -96,25 +99,25 @@ class LineError:
     true: float  # m: the true one
 
 
-def true_lines(rcg: Path, side: str) -> dict[int, tuple[float, dict[int, float]]]:
-    """Cycle in play on -> their offside line and our players' x, in our frame (the first show line
-    of each cycle)."""
-    sign = 1.0 if side == "l" else -1.0
+def true_lines(match: Path, team: str) -> dict[int, tuple[float, dict[int, float]]]:
+    """Cycle in play on -> their offside line (``rcss_options.offside_x``) and our players' x, in our
+    frame (the first show line of each cycle)."""
+    frames, side, forward = game(match, team)
     out: dict[int, tuple[float, dict[int, float]]] = {}
-    for t, mode, ball, players in read_rcg(rcg):
+    for t, mode, (bx, by), players in frames:
         if mode != "play_on" or t in out:
             continue
-        theirs = sorted((sign * p[2] for p in players if p[0] != side), reverse=True)
-        if len(theirs) >= 2:
-            out[t] = (max(theirs[1], sign * ball[0], 0.0), {p[1]: sign * p[2] for p in players if p[0] == side})
+        theirs = [reach.Runner((forward * p[2], forward * p[3])) for p in players if p[0] != side]
+        line = offside_x((forward * bx, forward * by), theirs)
+        if line is not None:
+            out[t] = (line, {p[1]: forward * p[2] for p in players if p[0] == side})
     return out
 
 
 def line_errors(match: Path, team: str = "CF") -> tuple[list[LineError], list[float]]:
     """In one match: every request of ``team``'s decisions in play on that told a line; and for each
     cycle in play on while a player's request in force was ON_LINE, his true x short of the true line."""
-    rcg = game_log(match)
-    lines = true_lines(rcg, side_of(rcg, team))
+    lines = true_lines(match, team)
     found, whys = [], {}
     for m in _requests(match, team, _WHY):
         t, number = int(m.group(3)), int(m.group(2))
@@ -127,9 +130,8 @@ def line_errors(match: Path, team: str = "CF") -> tuple[list[LineError], list[fl
         said = sorted(said, key=lambda request: request[0])  # (a relaunched player's lines may come later)
         for (since, why), (until, _) in itertools.pairwise([*said, (max(lines, default=0) + 1, "")]):
             if why == ON_LINE:
-                short += [
-                    lines[t][0] - lines[t][1][number] for t in range(since, until) if number in lines.get(t, (0, {}))[1]
-                ]
+                in_play = (lines[t] for t in range(since, until) if t in lines)
+                short += [line - ours[number] for line, ours in in_play if number in ours]
     return found, short
 
 
@@ -181,7 +183,8 @@ def main() -> int:
     believed, short = [], []
     for match in args.matches:
         found_here, short_here = line_errors(match, args.team)
-        believed, short = believed + found_here, short + short_here
+        believed.extend(found_here)
+        short.extend(short_here)
     if believed:  # (request logs from before the line was logged have none)
         print("\n" + "\n".join(line_table(believed, short)))
     return 0
