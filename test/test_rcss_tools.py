@@ -47,6 +47,8 @@ from rcss_series import (
 )
 from rcss_set_pieces import kind_of, set_pieces
 from rcss_set_pieces import table as set_piece_table
+from rcss_shots import shots as our_shots
+from rcss_shots import table as shots_table
 
 from cf_decision import reach
 
@@ -868,3 +870,58 @@ def test_a_replay_drill_takes_the_moments_before_our_kicks_in_the_zone_and_place
     ]
     assert placement(first, "CF", "PYRUS", moving=True)[-1] == "(move (ball) 20 2.5 0 1 -0.25)"
     assert spread([1, 2, 3, 4], 2) == [1, 3] and spread([1, 2], 3) == [1, 2, 1] and HOLD > 0
+
+
+def test_each_shot_of_ours_tells_its_touches_speed_aim_where_it_crosses_and_what_came_of_it(tmp_path):
+    """CF plays on the right (its frame turns x round; y as the server's). 9 chooses a shot at
+    t=2, touches the ball at t=3 and shoots at t=4 from (35, 2) in CF's frame at 3.0 m/cycle, 2
+    degrees left of his aim: a goal. 10 chooses one at t=20, but PYRUS 3 kicks first: never kicked.
+    10 chooses another at t=30 and shoots at t=31 from (40, 0) at 2.0 m/cycle into their keeper's
+    hands: PYRUS gets a free kick with its goalkeeper at the ball."""
+    decay = reach.BALL_DECAY
+    where = {("l", 1): (-51.0, 0.0), ("l", 3): (-20.0, 10.0), ("r", 9): (-34.5, 2.0), ("r", 10): (-39.5, 0.0)}
+    kicks_of = dict.fromkeys(where, 0)
+    lines = ["ULG6", "(team 1 PYRUS CF 0 0)", "(playmode 1 play_on)"]
+    aim = math.atan2(-6.2 - 2.0, 53.5 - 35.0)
+    way = aim + math.radians(2.0)
+    ball = {1: (-34.8, 2.0, 0.0, 0.0), 2: (-34.8, 2.0, 0.0, 0.0), 3: (-35.0, 2.0, 0.0, 0.0)}
+    x, y = -35.0, 2.0
+    vx, vy = -3.0 * math.cos(way), 3.0 * math.sin(way)  # the server's frame: x turned round
+    for t in range(4, 12):
+        x, y = x + vx, y + vy
+        vx, vy = vx * decay, vy * decay
+        ball[t] = (x, y, vx, vy)
+    ball |= {t: (-30.0, 5.0, 0.0, 0.0) for t in range(12, 31)}
+    ball |= {30: (-40.0, 0.0, 0.0, 0.0), 31: (-42.0, 0.0, -2.0 * decay, 0.0), 32: (-43.88, 0.0, 0.0, 0.0)}
+    touches = {3: ("r", 9), 4: ("r", 9), 21: ("l", 3), 31: ("r", 10)}
+    for t in range(1, 36):
+        if t in touches:
+            kicks_of[touches[t]] += 1
+        if t == 8:
+            lines.append("(playmode 8 goal_r)")
+        if t == 12:
+            lines.append("(playmode 12 play_on)")
+        if t == 33:
+            lines.append("(playmode 33 free_kick_l)")
+            where[("l", 1)] = (-44.5, 0.5)
+        bx, by, bvx, bvy = ball.get(t, ball[32])
+        lines.append(f"(show {t} ((b) {bx} {by} {bvx} {bvy}) {players_at(where, kicks_of, goalies=(('l', 1),))})")
+    (tmp_path / "m.rcg").write_text("\n".join(lines) + "\n")
+    logs = tmp_path / "logs-CF"
+    logs.mkdir()
+    choice = "[INFO] [1.0] [CF_{}_decision]: t={} shoot: {} @ target 53.5 {} ball 35.0 2.0 opp 50.0 0.0 0.5\n"
+    (logs / "CF_9_rcss_player.log").write_text(choice.format(9, 2, "a hopeful shot (the ball comes: 1 cycles)", -6.2))
+    (logs / "CF_10_rcss_player.log").write_text(
+        choice.format(10, 20, "a free shot", 3.1) + choice.format(10, 30, "a free shot", 0.0)
+    )
+    found, missed = our_shots(tmp_path)
+    assert missed == 1
+    goal, caught = found
+    assert (goal.time, goal.number, goal.why, goal.touches, goal.outcome) == (4, 9, "a hopeful shot", 1, "goal")
+    assert goal.distance == pytest.approx(math.hypot(17.5, 2.0))
+    assert goal.speed == pytest.approx(3.0) and goal.off == pytest.approx(2.0)
+    assert goal.cross == pytest.approx(2.0 + math.tan(way) * 17.5)
+    assert (caught.number, caught.touches, caught.outcome) == (10, 0, "keeper")
+    assert caught.speed == pytest.approx(2.0) and caught.cross == pytest.approx(0.0)
+    rows = shots_table(found, missed)
+    assert rows[-1].startswith("\n2 shots (1 choices never kicked): 1 goals, 2 on a way between the posts")
