@@ -230,6 +230,25 @@ def test_a_pass_from_a_ball_beside_the_body_is_laid_first_and_leaves_at_the_spee
         assert laid >= 0.95 * 2.7 > 1.25 * direct  # the pass wants 2.7 m/cycle; one touch gives 2.0 or less
 
 
+def test_a_shots_first_touch_sets_the_ball_rolling_so_the_kick_sends_it_faster_than_a_still_ball_can_go():
+    def kick_from(bx, by, method):
+        sim = sim_with((Side.LEFT, 9, 35.0, 0.0, 0.0))
+        sim.world.ball.x, sim.world.ball.y = 35.0 + bx, by
+        target = ":target (AbsolutePositioning :x 53.5 :y -6.2) :power 100.0"
+        skill, me = skill_of(sim, Side.LEFT, 9, exec_(method, target, 9))
+        return kick_commands(sim, skill, me, 5)
+
+    prm = Params()
+    for bx, by in ((0.1, 1.0), (-0.6, -0.5)):  # beside the body, behind it
+        kinds, shot = kick_from(bx, by, "shoot")
+        assert kinds == ["kick", "kick"]
+        assert shot > 0.95 * prm.ball_speed_max > prm.ball_accel_max  # one kick of a still ball: 2.7 at most
+        _, long_ball = kick_from(bx, by, "pass")  # a kick at full power that is not a shot is set up for 2.7
+        assert long_ball < 0.95 * prm.ball_speed_max
+    kinds, _ = kick_from(0.5, 0.0, "shoot")  # in front: no touch makes the kick faster, so none is taken
+    assert kinds == ["kick"]
+
+
 def test_a_first_touch_lays_the_ball_out_of_an_opponents_way_and_is_skipped_when_none_is_clear():
     sim = sim_with((Side.LEFT, 4, 0.0, 0.0, 0.0), (Side.LEFT, 8, 20.0, 0.0, 0.0), (Side.RIGHT, 5, 2.0, -2.6, 90.0))
     sim.world.ball.x, sim.world.ball.y = 0.1, 1.0  # beside the body; he comes up on the other side
