@@ -374,8 +374,8 @@ class KickTo(Skill):
 
         A shot is touched first unless the kick now sends it at 2.7 or more: a ball rolling along the
         shot's way takes the kick's most on top of its own speed. Of our shots on a way between the
-        posts from 17 m or further (tools/rcss_shots.py, sessions 52-56, mostly against Pyrus2D), 7 of
-        25 that left at 2.7 m/cycle or faster went in, 3 of 28 slower ones; from 20 m a shot at 3.0
+        posts from 17 m or further (tools/rcss_shots.py, sessions 52-55, mostly against Pyrus2D), 6 of
+        23 that left at 2.7 m/cycle or faster went in, 3 of 28 slower ones; from 20 m a shot at 3.0
         crosses the line in 8 cycles, one at 2.5 in 10.6.
         """
         return world.params.ball_speed_max if self.name == "shoot" else world.params.ball_accel_max
