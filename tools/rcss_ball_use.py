@@ -37,6 +37,7 @@ import math
 import re
 import sys
 from collections import defaultdict
+from collections.abc import Container, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -82,14 +83,22 @@ def reason(text: str) -> str:
     return re.sub(r" ([:,])", r"\1", words)
 
 
+def logged(match: Path, team: str, pattern: re.Pattern, cycles: Container[int] | None = None) -> Iterator[re.Match]:
+    """``pattern``'s matches in the log lines of ``team``'s decisions in one match (``logs-TEAM/``, as
+    rcss_match writes them), at the cycles in ``cycles`` (None: at any). The pattern's group 1 is
+    the team's name, group 3 the cycle (``[TEAM_N_decision]: ... t=T``)."""
+    for log in sorted(match.glob(f"logs-{team}/*.log")):
+        for text in log.read_text(errors="replace").splitlines():
+            m = pattern.search(text)
+            if m and m.group(1) == team and (cycles is None or int(m.group(3)) in cycles):
+                yield m
+
+
 def decisions(match: Path, team: str) -> dict[int, list[tuple[int, str]]]:
     """Shirt number -> [(time, reason)] from our players' logs (``logs-TEAM/``, as rcss_match writes them)."""
     out: dict[int, list[tuple[int, str]]] = defaultdict(list)
-    for log in sorted(match.glob(f"logs-{team}/*.log")):
-        for line in log.read_text(errors="replace").splitlines():
-            m = _DECISION.search(line)
-            if m and m.group(1) == team:
-                out[int(m.group(2))].append((int(m.group(3)), reason(m.group(5))))
+    for m in logged(match, team, _DECISION):
+        out[int(m.group(2))].append((int(m.group(3)), reason(m.group(5))))
     for entries in out.values():
         entries.sort()
     return out

@@ -26,12 +26,11 @@ import math
 import re
 import statistics
 import sys
-from collections.abc import Container, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import game, game_log, match_parser
+from rcss_ball_use import game, game_log, logged, match_parser
 from rcss_options import offside_x
 from rcss_series import side_of
 
@@ -72,7 +71,7 @@ def errors(match: Path, team: str = "CF") -> list[Error]:
     rcg = game_log(match)
     balls = truth(rcg, side_of(rcg, team))
     out = []
-    for m in _requests(match, team, _REQUEST, balls):
+    for m in logged(match, team, _REQUEST, balls):
         me_x, me_y, x, y, vx, vy = (float(m.group(i)) for i in range(4, 10))
         tx, ty, tvx, tvy = balls[int(m.group(3))]
         if int(m.group(10)) != 0 or math.hypot(tvx, tvy) < BALL_MOVING:
@@ -81,16 +80,6 @@ def errors(match: Path, team: str = "CF") -> list[Error]:
             Error(math.hypot(x - me_x, y - me_y), math.hypot(x - tx, y - ty), math.hypot(vx / 10 - tvx, vy / 10 - tvy))
         )
     return out
-
-
-def _requests(match: Path, team: str, pattern: re.Pattern, cycles: Container[int] | None = None) -> Iterator[re.Match]:
-    """``pattern``'s matches in ``team``'s decisions' request lines of one match, at the cycles in
-    ``cycles`` (None: at any)."""
-    for log in sorted(match.glob(f"logs-{team}/*.log")):
-        for text in log.read_text(errors="replace").splitlines():
-            m = pattern.search(text)
-            if m and m.group(1) == team and (cycles is None or int(m.group(3)) in cycles):
-                yield m
 
 
 @dataclass(frozen=True)
@@ -119,7 +108,7 @@ def line_errors(match: Path, team: str = "CF") -> tuple[list[LineError], list[fl
     cycle in play on while a player's request in force was ON_LINE, his true x short of the true line."""
     lines = true_lines(match, team)
     found, whys = [], {}
-    for m in _requests(match, team, _WHY):
+    for m in logged(match, team, _WHY):
         t, number = int(m.group(3)), int(m.group(2))
         whys.setdefault(number, []).append((t, m.group(4)))
         told = _LINE.search(m.string)

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import game, game_log, match_parser, reason
+from rcss_ball_use import game, game_log, logged, match_parser, reason
 from rcss_series import Body, show_bodies
 
 _AIMED = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) \w+: (.*?) @ target \S+ \S+ ball \S+ \S+ opp ?(.*)")
@@ -47,17 +47,13 @@ def aimed(match: Path, team: str) -> Iterator[Aimed]:
     """Each decision of ``team``'s players in ``match`` that logged its aim, in a cycle the game log has."""
     frames, side, forward = game(match, team)
     at = {frame[0]: frame for frame in frames}
-    for log in sorted(match.glob(f"logs-{team}/*.log")):
-        for line in log.read_text(errors="replace").splitlines():
-            m = _AIMED.search(line)
-            if not m or m.group(1) != team or int(m.group(3)) not in at:
-                continue
-            t = int(m.group(3))
-            _, mode, ball, players = at[t]
-            theirs = [((x, y), (forward * x, -forward * y)) for s, _, x, y, _ in players if s != side]
-            believed = [tuple(map(float, entry.split()[:2])) for entry in m.group(5).split(",") if entry.strip()]
-            ball_ours = (forward * ball[0], -forward * ball[1])
-            yield Aimed(t, int(m.group(2)), reason(m.group(4)), mode, ball_ours, theirs, believed)
+    for m in logged(match, team, _AIMED, at):
+        t = int(m.group(3))
+        _, mode, ball, players = at[t]
+        theirs = [((x, y), (forward * x, -forward * y)) for s, _, x, y, _ in players if s != side]
+        believed = [tuple(map(float, entry.split()[:2])) for entry in m.group(5).split(",") if entry.strip()]
+        ball_ours = (forward * ball[0], -forward * ball[1])
+        yield Aimed(t, int(m.group(2)), reason(m.group(4)), mode, ball_ours, theirs, believed)
 
 
 def picture(match: Path, team: str = "CF", near: float = 25.0, within: float = 3.0) -> dict[str, list[int]]:

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rcss_ball_use import game, game_log, match_parser
+from rcss_ball_use import game, game_log, logged, match_parser
 from rcss_belief_error import truth
 from rcss_series import GOAL_X, kick_events
 
@@ -57,12 +57,9 @@ class Shot:
 def choices(match: Path, team: str) -> list[tuple[int, int, str, float, float]]:
     """(cycle, shirt number, reason, aim x, aim y) of every shoot choice our decisions logged."""
     out = []
-    for log in sorted(match.glob(f"logs-{team}/*.log")):
-        for line in log.read_text(errors="replace").splitlines():
-            m = _CHOICE.search(line)
-            if m and m.group(1) == team:
-                why = re.sub(r" \(the ball comes: \d+ cycles\)", "", m.group(4))
-                out.append((int(m.group(3)), int(m.group(2)), why, float(m.group(5)), float(m.group(6))))
+    for m in logged(match, team, _CHOICE):
+        why = re.sub(r" \(the ball comes: \d+ cycles\)", "", m.group(4))
+        out.append((int(m.group(3)), int(m.group(2)), why, float(m.group(5)), float(m.group(6))))
     return sorted(out)
 
 
@@ -86,7 +83,7 @@ def shots(match: Path, team: str = "CF") -> tuple[list[Shot], int]:
             continue
         taken.update(k[0] for k in mine)
         i = mine[-1][0]
-        x, y, *_ = ball_now.get(frames[i - 1][0], (0.0, 0.0, 0.0, 0.0))  # where the ball was kicked
+        x, y, *_ = ball_now[frames[i - 1][0]]  # where the ball was kicked
         _, _, vx, vy = ball_now[frames[i][0]]
         aim = math.atan2(aim_y - y, aim_x - x)
         off = math.degrees(math.remainder(math.atan2(vy, vx) - aim, math.tau))
