@@ -829,11 +829,10 @@ def test_a_try_ends_when_the_ball_is_given_to_them_and_an_offence_names_the_offe
         assert not ended_for_them(mode), mode
 
 
-def test_a_replay_drill_takes_the_moments_before_our_kicks_in_the_zone_and_places_everyone_as_then(tmp_path):
+def replay_game_log(where: Path) -> Path:
     """CF plays on the right (attacking -x). Its 9 kicks in play at 5 (ball at x -20: our frame 20),
     6 (too soon after), 50 (x -30: 30) and 80 (x +10: our half); PYRUS 3 kicks at 20; a kick at a
-    kick-in (60) does not count. Everyone is placed as at the time before each kick, turned round so
-    that CF is the left side, as in a drill."""
+    kick-in (60) does not count."""
     kicks = {("l", 3): 0, ("r", 9): 0}
     touches = {5: ("r", 9), 6: ("r", 9), 20: ("l", 3), 50: ("r", 9), 60: ("r", 9), 80: ("r", 9)}
     ball_x = {4: -20.0, 5: -20.0, 49: -30.0, 59: -30.0, 79: 10.0}
@@ -851,8 +850,15 @@ def test_a_replay_drill_takes_the_moments_before_our_kicks_in_the_zone_and_place
             f"((r 9) 0 0x1 {x + 0.5} -3 -0.4 0.2 -170 0 (v h 120) (fp 0 0) (s 8000 1 1 130600) (c {kicks[('r', 9)]} 0 0 0 0 0 0 0 0 0 0))"
         )
         lines.append(f"(show {t} ((b) {x} -2.5 -1 0.25) {players})")
-    rcg = tmp_path / "m.rcg"
+    rcg = where / "m.rcg"
     rcg.write_text("\n".join(lines) + "\n")
+    return rcg
+
+
+def test_a_replay_drill_takes_the_moments_before_our_kicks_in_the_zone_and_places_everyone_as_then(tmp_path):
+    """The kicks of ``replay_game_log``. Everyone is placed as at the time before each kick, turned
+    round so that CF is the left side, as in a drill."""
+    rcg = replay_game_log(tmp_path)
     found = situations(rcg, "CF", (0.0, 52.5))
     assert [s.source for s in found] == ["m.rcg@4", "m.rcg@49"]
     first = found[0]
@@ -870,6 +876,28 @@ def test_a_replay_drill_takes_the_moments_before_our_kicks_in_the_zone_and_place
     ]
     assert placement(first, "CF", "PYRUS", moving=True)[-1] == "(move (ball) 20 2.5 0 1 -0.25)"
     assert spread([1, 2, 3, 4], 2) == [1, 3] and spread([1, 2], 3) == [1, 2, 1] and HOLD > 0
+
+
+def test_a_replay_drill_lists_how_many_moments_each_game_log_holds_without_a_server(tmp_path):
+    """``--list``: the moments per match directory and in all, then stop (no --server given)."""
+    one, two, empty = tmp_path / "match-1", tmp_path / "match-2", tmp_path / "match-3"
+    for d in (one, two, empty):
+        d.mkdir()
+    replay_game_log(one)
+    replay_game_log(two)
+    (empty / "e.rcg").write_text("ULG6\n(team 1 PYRUS CF 0 0)\n(playmode 1 play_on)\n")
+    tool = Path(__file__).resolve().parents[1] / "tools" / "rcss_drill.py"
+    args = ["--drill", "replay", "--from", str(one), str(two), str(empty), "--list", "--server", ""]
+    done = subprocess.run([sys.executable, str(tool), *args, "--zone", "25", "52.5"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == [
+        f"{one}: 1",
+        f"{two}: 1",
+        f"{empty}: 0",
+        "2 moments with the ball at x 25..52.5 in 3 game logs, 2 with any",
+    ]
+    done = subprocess.run([sys.executable, str(tool), *args, "--zone", "0", "52.5"], capture_output=True, text=True)
+    assert done.stdout.splitlines()[-1] == "4 moments with the ball at x 0..52.5 in 3 game logs, 2 with any"
 
 
 def test_each_shot_of_ours_tells_its_touches_speed_aim_where_it_crosses_and_what_came_of_it(tmp_path):

@@ -3,7 +3,7 @@ and what came of each try.
 
     python tools/rcss_drill.py --server $RCSSSERVER --opponent HELIOS_base --opponent-cmd "start.sh -t {team}"
                                [--drill kick-off|free-kick|replay] [--at X Y] [--tries 30] [--window 100] [--out DIR]
-                               [--from MATCH_DIR ...] [--zone X0 X1]
+                               [--from MATCH_DIR ...] [--zone X0 X1] [--list]
                                (and any option of tools/rcss_match.py)
 
 A match gives our team five or six kick-offs in 2000 cycles; a drill gives one every ~110 cycles.
@@ -21,7 +21,8 @@ taken. The trainer puts all 22 players (their body's direction too) and the ball
 log had them, holds them there for HOLD steps (both sides see the picture and believe it) and
 lets them go with the game log's velocities, in play on. The tries go through the situations in
 order, evenly spread over them when there are more than tries. The opponent should be the one of
-those matches (its players are placed by shirt number).
+those matches (its players are placed by shirt number). ``--list`` prints how many such moments
+each game log holds and stops (no server): how often we had the ball that far up, before a drill.
 Synch mode only (the trainer counts the server's steps). The first try is the referee's own
 kick-off, so heterogeneous player types are handed out as in a match.
 
@@ -280,6 +281,7 @@ def main() -> int:
     ap.add_argument(
         "--zone", type=float, nargs=2, default=(0.0, 52.5), metavar=("X0", "X1"), help="replay: the ball's x"
     )
+    ap.add_argument("--list", action="store_true", help="replay: count the moments per game log and stop")
     ap.set_defaults(timeout=3600.0, game_log=True)
     args = ap.parse_args()
     if args.realtime:
@@ -291,12 +293,19 @@ def main() -> int:
     if args.drill == "replay":
         if not args.sources or args.zone[0] >= args.zone[1]:
             ap.error("--drill replay needs --from MATCH_DIR ... and a --zone X0 X1 with X0 < X1")
-        found = []
+        found, held = [], 0
         for source in args.sources:
             rcg = newest_game_log(Path(source))
             if rcg is None:
                 ap.error(f"no game log in {source}")
-            found += situations(rcg, args.team, tuple(args.zone))
+            here = situations(rcg, args.team, tuple(args.zone))
+            found, held = found + here, held + bool(here)
+            if args.list:
+                print(f"{source}: {len(here)}")
+        if args.list:
+            zone = f"{args.zone[0]:g}..{args.zone[1]:g}"
+            print(f"{len(found)} moments with the ball at x {zone} in {len(args.sources)} game logs, {held} with any")
+            return 0
         if not found:
             ap.error(f"no kick of {args.team}'s in play with the ball in x {args.zone[0]:g}..{args.zone[1]:g} (--from)")
         args.situations = spread(found, args.tries)
