@@ -898,6 +898,8 @@ def test_a_replay_drill_lists_how_many_moments_each_game_log_holds_without_a_ser
     ]
     done = subprocess.run([sys.executable, str(tool), *args, "--zone", "0", "52.5"], capture_output=True, text=True)
     assert done.stdout.splitlines()[-1] == "4 moments with the ball at x 0..52.5 in 3 game logs, 2 with any"
+    kick_off = subprocess.run([sys.executable, str(tool), "--list", "--server", ""], capture_output=True, text=True)
+    assert kick_off.returncode == 2 and "--drill replay" in kick_off.stderr  # nothing to count: said, not ignored
 
 
 def test_each_shot_of_ours_tells_its_touches_speed_aim_where_it_crosses_and_what_came_of_it(tmp_path):

@@ -288,6 +288,8 @@ def main() -> int:
         ap.error("drills run in synch mode")
     if args.tries < 1 or args.window < 1:
         ap.error("--tries and --window must be positive")
+    if args.list and args.drill != "replay":
+        ap.error("--list counts a replay drill's moments: give it with --drill replay")
     args.game_log, args.halves, args.kick_off = True, 1, "referee"
     args.situations = []
     if args.drill == "replay":
