@@ -301,7 +301,8 @@ def main() -> int:
             if rcg is None:
                 ap.error(f"no game log in {source}")
             here = situations(rcg, args.team, tuple(args.zone))
-            found, held = found + here, held + bool(here)
+            found += here
+            held += bool(here)
             if args.list:
                 print(f"{source}: {len(here)}")
         if args.list:
