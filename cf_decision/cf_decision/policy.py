@@ -14,7 +14,8 @@ What it does, in order:
   the goal on the line between ball and goal centre, further out the further
   the ball;
 - with the ball: shoot when close enough with a free line, else pass to the
-  best open team-mate ahead, else carry it at full speed on an open run; else,
+  best open team-mate ahead (or play a through ball behind their last line),
+  never to one offside, else carry it at full speed on an open run; else,
   in our half, a safe pass losing at most 3 m, received outside our penalty
   area, else clear it long; in theirs, shoot when within
   LONG_SHOT_RANGE, else a safe pass to a team-mate within that range and
@@ -37,7 +38,8 @@ What it does, in order:
   their half runs on, onside, for the ball back (support.py); in our half the second
   fastest stands in his way to our goal, facing the ball; any player within
   tackling reach of an opponent's ball goes for it; the others hold their
-  formation position, shifted with the ball, facing the ball; while a team-mate
+  formation position, shifted with the ball, facing the ball (the forwards on
+  their last line unless the ball is deep in our half); while a team-mate
   has the ball in play, a midfielder or forward stands where a pass reaches him safely,
   within 4 m of that position and as far up as he may (support.py).
 """
@@ -87,6 +89,7 @@ MEET_SLACK = 0.5  # m: how near the point a pass is met at the receiver waits fo
 SUPPORT_SLACK = 1.5  # m: how near the open spot a supporting player goes (a lane is narrow)
 MEET_GET = 4  # cycles: a pass seen rolling that I meet this soon, or that rolls
 GET_NEAR = 2.5  # m: this near me within MEET_GET cycles, is got by the intercept skill
+LINE_AHEAD_MAX = 25.0  # m: a forward on their last line stands at most this far beyond the ball
 ANTICIPATE = 1  # cycles: the interceptor this near the ball asks for its kick, not for the intercept
 
 
@@ -178,9 +181,10 @@ def decide(
             return hold(me_pos, spot, why, 1.0, tired(state))
     x, y = home_position(number, team_size, ball_x=ball[0], ball_y=ball[1], offside_x=line)
     why = f"{role.value}: hold position"
-    if role is Role.FORWARD and line is not None and not their_ball(state, ball) and ball[0] > -20.0:
-        # Our ball: stand on their last line, ready to run onto a ball played behind it.
-        x, why = max(x, line - 1.0), "forward: on their last line"
+    if role is Role.FORWARD and line is not None and ball[0] > -20.0:
+        # Stand on their last line, ready to run onto a ball played behind it, whoever has the ball
+        # now: sent there only once it was ours, the forwards stood 9 m short of it (session 58).
+        x, why = max(x, min(line - 1.0, ball[0] + LINE_AHEAD_MAX)), "forward: on their last line"
     if role in (Role.MIDFIELDER, Role.FORWARD) and mode is PlayMode.PLAY_ON and our_ball(state, ball):
         # (Not at our set piece: the taker's pass model has the receivers standing still, and there
         # they kept 29 of 33 passes against HELIOS base.)

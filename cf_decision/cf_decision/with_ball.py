@@ -12,7 +12,7 @@ from cf_lang.ontology import actions as act
 
 from . import reach
 from .set_piece import OUR_SET_PIECES
-from .situation import FIELD_HALF_LENGTH, GOAL, Decision, dist, play_mode, point, sides, xy
+from .situation import FIELD_HALF_LENGTH, GOAL, Decision, dist, offside_line, play_mode, point, sides, xy
 
 SHOOT_RANGE = 22.0  # at a set piece, shoot from within this distance
 SHOT_RANGE = 30.0  # in play, consider shots from within this distance
@@ -39,6 +39,12 @@ WAY_OFF_UP_FIELD = 75.0  # degrees: a dribble's way goes at most this far off st
 LOOK_AGE = 2  # cycles: at our set piece, an opponent seen longer ago than this is looked for first,
 LOOK_RADIUS = 30.0  # m: if he was this close to the ball and
 LOOK_BEHIND = 5.0  # m: at most this much nearer our goal than the ball
+# HELIOS base holds its last line about 7 m beyond our ball in the middle third, 35 m short of its
+# goal line: balls into that space are through balls (docs/performance.md, session 58).
+THROUGH_DEPTHS = (6.0, 12.0, 18.0)  # m behind their last line a through ball is aimed
+THROUGH_LANES = (-24.0, -16.0, -8.0, 0.0, 8.0, 16.0, 24.0)  # y of the lanes it is aimed along
+THROUGH_MARGIN = 3  # cycles: a through ball runs past their men into their space: a wider margin than SAFE_MARGIN
+ONSIDE_SLACK = 0.5  # m: a team-mate this little beyond their line at the kick counts as onside (belief noise)
 
 
 def win_the_ball(state: WorldState, ball: tuple[float, float], why: str) -> Decision:
@@ -150,42 +156,57 @@ def best_pass(
 ) -> PassChoice | None:
     """The best pass a team-mate receives SAFE_MARGIN cycles before any opponent could, gaining ``min_gain``.
 
-    Targets are team-mates' feet and points ahead of them (through balls); the score is how far
-    up the field the ball is received, plus a little for time to spare. ``to_shoot``: only balls
+    Targets are team-mates' feet, points ahead of them, and through balls: points behind their
+    last line, got THROUGH_MARGIN cycles first. No team-mate beyond that line is a receiver (he
+    would be offside). The score is how far up the field the ball is received, plus a little for
+    time to spare. ``to_shoot``: only balls
     received within LONG_SHOT_RANGE of the goal count, the nearest the goal best (a set-up).
     """
     mates, opponents = sides(state)
-    best, best_score = None, -1e9
-    ours_all = [runner for _, runner in mates]
+    line = offside_line(state, ball)
+    if line is not None:  # a team-mate beyond their line at the kick may not play the ball
+        mates = [(n, r) for n, r in mates if r.pos[0] <= line + ONSIDE_SLACK]
+    targets = []
     for number, runner in mates:
         here = runner.pos
         leads = (0.0, 5.0, 10.0) if here[0] > ball[0] - 5.0 else (0.0,)
-        for lead in leads:
-            target = (min(FIELD_HALF_LENGTH - 3.0, here[0] + lead), here[1])
-            d = dist(ball, target)
-            if not 4.0 <= d <= 40.0:
+        targets += [
+            ((min(FIELD_HALF_LENGTH - 3.0, here[0] + lead), here[1]), number, lead > 0.0, SAFE_MARGIN) for lead in leads
+        ]
+    if line is not None and line > ball[0]:
+        targets += [
+            ((min(FIELD_HALF_LENGTH - 3.0, line + depth), y), None, True, THROUGH_MARGIN)
+            for depth in THROUGH_DEPTHS
+            for y in THROUGH_LANES
+        ]
+    best, best_score = None, -1e9
+    for target, meant, to_point, margin in targets:
+        d = dist(ball, target)
+        if not 4.0 <= d <= 40.0:
+            continue
+        # A pass to a point keeps rolling past it: received beyond a line, it is theirs.
+        path = reach.in_field(reach.kicked_path(ball, target, reach.pass_speed(d)))
+        reached = [(c, n) for n, r in mates if (c := reach.cycles_to_path(r.pos, path, speed=r.speed)) is not None]
+        if not reached:
+            continue
+        ours, first = min(reached)  # (ties to the lower number, as receivers tell who meets a pass)
+        number = meant or first  # a through ball is the first team-mate's
+        theirs = reach.first_cycles(path, opponents)
+        spare = reach.HORIZON if theirs is None else theirs - ours
+        if spare < margin:
+            continue
+        received = path[ours - 1]
+        if received[0] - ball[0] < min_gain or in_our_box(received):
+            continue  # (in our area the keeper would take it: a back pass he may not catch)
+        if to_shoot:
+            to_goal = dist(received, GOAL)
+            if to_goal > LONG_SHOT_RANGE:
                 continue
-            # A pass to a point keeps rolling past it: received beyond a line, it is theirs.
-            path = reach.in_field(reach.kicked_path(ball, target, reach.pass_speed(d)))
-            ours = reach.first_cycles(path, ours_all)
-            if ours is None:
-                continue
-            theirs = reach.first_cycles(path, opponents)
-            spare = reach.HORIZON if theirs is None else theirs - ours
-            if spare < SAFE_MARGIN:
-                continue
-            received = path[ours - 1]
-            if received[0] - ball[0] < min_gain or in_our_box(received):
-                continue  # (in our area the keeper would take it: a back pass he may not catch)
-            if to_shoot:
-                to_goal = dist(received, GOAL)
-                if to_goal > LONG_SHOT_RANGE:
-                    continue
-                score = -to_goal + 0.5 * min(spare, 6)
-            else:
-                score = received[0] + 0.5 * min(spare, 6) - 0.3 * abs(received[1]) * (received[0] > 30.0)
-            if score > best_score:
-                best, best_score = PassChoice(number, target if lead else None, received[0] - ball[0], received), score
+            score = -to_goal + 0.5 * min(spare, 6)
+        else:
+            score = received[0] + 0.5 * min(spare, 6) - 0.3 * abs(received[1]) * (received[0] > 30.0)
+        if score > best_score:
+            best, best_score = PassChoice(number, target if to_point else None, received[0] - ball[0], received), score
     return best
 
 

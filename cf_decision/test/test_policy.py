@@ -7,7 +7,7 @@ import math
 import pytest
 
 from cf_decision.goalkeeper import guard_spot
-from cf_decision.policy import decide
+from cf_decision.policy import LINE_AHEAD_MAX, decide
 from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
 from cf_decision.roles import KICK_OFF_WING, Role, back_line, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
@@ -102,7 +102,8 @@ def test_shoot_when_the_ball_beats_the_keeper():
 
 
 def test_pass_forward_to_a_team_mate_who_gets_there_first():
-    players = [mate(10, 15.0, 5.0), mate(11, -5.0, -10.0), opp(4, 2.0, -20.0), opp(5, 1.0, 3.0)]
+    keeper, back = opp(1, 50.0, 0.0, goalie=True), opp(3, 30.0, -25.0)  # their line at 30: 10 is onside
+    players = [mate(10, 15.0, 5.0), mate(11, -5.0, -10.0), opp(4, 2.0, -20.0), opp(5, 1.0, 3.0), keeper, back]
     d = decide(state((0.0, 0.0), ball=(0.5, 0.0), players=players), 7, 11, {})
     assert d.method == "pass" and (d.action.to or d.action.target) is not None
     choice = best_pass(state((0.0, 0.0), players=players), (0.5, 0.0))
@@ -532,10 +533,35 @@ def test_a_wide_dribbler_takes_the_way_with_the_most_room_not_the_first_free_one
     assert len(free_ways(state(wing, ball=(15.5, 28.0)), wing)) == 4  # of five: the one 97 degrees off up
 
 
-def test_on_our_ball_forwards_wait_on_their_last_line():
+def test_forwards_wait_on_their_last_line_whoever_has_the_ball():
     players = [opp(1, 50.0, 0.0, goalie=True), opp(2, 25.0, 5.0), opp(3, 22.0, 10.0), mate(7, 0.5, 0.0)]
     d = decide(state((0.0, -16.0), ball=(0.0, 0.0), players=players, number=11), 11, 11, {7: 0})
     assert d.method == "moveTo" and d.action.target.x == 24.0 and "last line" in d.why  # the second-last: 25
+    theirs = [*players[:3], opp(9, 0.5, 0.0), mate(7, -1.5, 0.0)]  # their ball: still on the line
+    d = decide(state((0.0, -16.0), ball=(0.0, 0.0), players=theirs, number=11), 11, 11, {7: 1})
+    assert d.method == "moveTo" and d.action.target.x == 24.0 and "last line" in d.why
+    deep = [opp(1, 50.0, 0.0, goalie=True), opp(2, 45.0, 5.0), opp(3, 44.0, 10.0), *theirs[3:]]
+    d = decide(state((0.0, -16.0), ball=(0.0, 0.0), players=deep, number=11), 11, 11, {7: 1})
+    assert d.action.target.x == LINE_AHEAD_MAX  # a deep line: no further than this beyond the ball
+    d = decide(state((-20.0, -16.0), ball=(-25.0, 0.0), players=theirs, number=11), 11, 11, {7: 1})
+    assert "last line" not in d.why  # their ball deep in our half: the outlet by the touch line
+
+
+def test_a_through_ball_goes_into_the_space_behind_their_last_line():
+    # Their back line 7 m beyond our ball, as HELIOS base holds it; our forward 1 m onside of it.
+    line = [opp(1, 50.0, 0.0, goalie=True), *(opp(n, 17.0, y) for n, y in ((2, -20.0), (3, -7.0), (4, 7.0), (5, 20.0)))]
+    forward = mate(10, 16.0, 0.0)
+    choice = best_pass(state((9.5, 0.0), players=[*line, forward]), (10.0, 0.0))
+    assert choice.number == 10 and choice.target is not None and choice.target[0] > 17.0  # aimed behind the line
+    d = decide(state((9.5, 0.0), ball=(10.0, 0.0), players=[*line, forward]), 7, 11, {})
+    assert d.method == "pass" and d.action.target.x > 17.0
+    # The gap closed: a man of theirs between the forward and the space: no through ball.
+    shut = [*line, opp(6, 19.0, 0.0), opp(7, 19.0, -4.0), opp(8, 19.0, 4.0), forward]
+    shut_choice = best_pass(state((9.5, 0.0), players=shut), (10.0, 0.0))
+    assert shut_choice is None or shut_choice.at[0] <= 17.0
+    # A team-mate beyond their line at the kick is offside: never the receiver.
+    offside = mate(9, 22.0, 0.0)  # alone in the gap: to his feet, were he onside
+    assert best_pass(state((9.5, 0.0), players=[*line, offside]), (10.0, 0.0)) is None
 
 
 def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it_furthest_up():
@@ -563,10 +589,10 @@ def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it
 def test_in_their_half_a_ball_into_space_a_team_mate_reaches_first_comes_before_a_dribble():
     players = [opp(1, 50.0, 0.0, goalie=True), opp(4, 22.0, 3.0), opp(8, 18.0, 8.0), opp(6, 12.8, -7.5)]
     blocked = [*players, mate(11, 20.0, -10.0)]  # our forward, with a man on the line to his feet
-    assert best_pass(state((5.0, -5.0), players=blocked), (5.5, -5.0), min_gain=10.0) is None
+    choice = best_pass(state((5.0, -5.0), players=blocked), (5.5, -5.0), min_gain=10.0)
+    assert choice is None or choice.target is not None  # never to his feet: the man is on the way
     d = decide(state((5.0, -5.0), ball=(5.5, -5.0), players=blocked, number=9), 9, 11, {})
-    assert d.method == "pass" and d.why == "kick it into space for a team-mate" and d.action.power == 100.0
-    assert d.action.target.y < -12.0  # out wide, past the man, where the forward gets it first
+    assert d.method == "pass" and d.action.target.y < -12.0  # out wide, past the man, where the forward gets it
     d = decide(state((5.0, -5.0), ball=(5.5, -5.0), players=players, number=9), 9, 11, {})
     assert d.method == "dribble"  # nobody of ours to reach it: carry it as before
 
