@@ -21,25 +21,29 @@ import re
 
 from .sexp import Limits
 
-_SP = r"[ \t]++"
-_OSP = r"[ \t]*+"
-_NAME = r"[A-Za-z][A-Za-z0-9_]*+"
+# Atomic groups (?>...) keep the match from backtracking into hostile text. Not the possessive
+# quantifiers (*+ ++) that say the same: before Python 3.11.5 (CPython gh-106052; Debian 12 has
+# 3.11.2) they matched where the plain quantifier does not, and this reader took a malformed
+# reply-to for a good one.
+_SP = r"(?>[ \t]+)"
+_OSP = r"(?>[ \t]*)"
+_NAME = r"[A-Za-z](?>[A-Za-z0-9_]*)"
 _AID = rf"\({_OSP}agent-identifier{_SP}:name{_SP}{_NAME}{_OSP}\)"
-_SET = rf"\({_OSP}set(?:{_SP}{_AID})++{_OSP}\)"
+_SET = rf"\({_OSP}set(?>(?:{_SP}{_AID})+){_OSP}\)"
 # Only the escapes the reader knows. A word is what the reader takes for a symbol:
 # not a number (+ - . digits), keyword (:), comment (;), string or parenthesis.
-_STR = r'"(?:[^"\\]++|\\["\\ntr])*+"'
-_WORD = r"""[^\s()";:0-9+.\-][^\s()";]*+"""
+_STR = r'"(?>(?:(?>[^"\\]+)|\\["\\ntr])*)"'
+_WORD = r"""[^\s()";:0-9+.\-](?>[^\s()";]*)"""
 _TEXT_KEYS = "language|encoding|ontology|protocol|conversation-id|reply-with|in-reply-to"
 # A FIPA date-time; the caller checks the date itself (parse_datetime).
-_TIME = r"[0-9]{8}T[0-9]{9}[A-Za-z]?+"
+_TIME = r"[0-9]{8}T[0-9]{9}(?>[A-Za-z]?)"
 _PARAM = (
     rf"{_SP}(?::sender{_SP}{_AID}|:(?:receiver|reply-to){_SP}{_SET}|:content{_SP}{_STR}"
     rf"|:(?:{_TEXT_KEYS}){_SP}(?:{_WORD}|{_STR})|:reply-by{_SP}{_TIME})"
 )
 # The performative is any word here; the caller checks it is one of the 22.
-_MESSAGE = re.compile(rf"{_OSP}\({_OSP}([A-Za-z][A-Za-z-]*+)((?:{_PARAM})*+){_OSP}\){_OSP}")
-_PAIRS = re.compile(rf"{_SP}:([a-z-]++){_SP}({_SET}|{_AID}|{_STR}|{_WORD}|{_TIME})")
+_MESSAGE = re.compile(rf"{_OSP}\({_OSP}([A-Za-z](?>[A-Za-z-]*))((?>(?:{_PARAM})*)){_OSP}\){_OSP}")
+_PAIRS = re.compile(rf"{_SP}:((?>[a-z-]+)){_SP}({_SET}|{_AID}|{_STR}|{_WORD}|{_TIME})")
 _NAMES = re.compile(rf":name{_SP}({_NAME})")
 
 _fullmatch = _MESSAGE.fullmatch
