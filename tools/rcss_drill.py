@@ -209,6 +209,10 @@ def set_up(trainer: Trainer, args: argparse.Namespace, situation: Situation | No
     """Both teams to their kick-off places, stamina back, the ball placed, our set piece given; or
     everyone where ``situation`` has them, held still for HOLD steps, then play on."""
     if situation is not None:
+        # Through another mode first: rcssserver's referee forgets the last set piece's taker on any
+        # change of mode but to play_on, and a kick-off taker placed at the ball who kicked it again
+        # was called for a free kick fault.
+        trainer.send("(change_mode before_kick_off)")
         trainer.send("(change_mode play_on)")
         trainer.send("(recover)")
         for _ in range(HOLD):
