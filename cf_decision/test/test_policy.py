@@ -588,11 +588,17 @@ def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it
 
 def test_in_their_half_a_ball_into_space_a_team_mate_reaches_first_comes_before_a_dribble():
     players = [opp(1, 50.0, 0.0, goalie=True), opp(4, 22.0, 3.0), opp(8, 18.0, 8.0), opp(6, 12.8, -7.5)]
-    blocked = [*players, mate(11, 20.0, -10.0)]  # our forward, with a man on the line to his feet
-    choice = best_pass(state((5.0, -5.0), players=blocked), (5.5, -5.0), min_gain=10.0)
-    assert choice is None or choice.target is not None  # never to his feet: the man is on the way
+    # Our forward, with a man on the line to his feet, and one of theirs covering the space behind
+    # their line (else it is a through ball, below).
+    blocked = [*players, opp(5, 35.0, -20.0), mate(11, 20.0, -10.0)]
+    assert best_pass(state((5.0, -5.0), players=blocked), (5.5, -5.0), min_gain=10.0) is None
     d = decide(state((5.0, -5.0), ball=(5.5, -5.0), players=blocked, number=9), 9, 11, {})
-    assert d.method == "pass" and d.action.target.y < -12.0  # out wide, past the man, where the forward gets it
+    assert d.method == "pass" and d.why == "kick it into space for a team-mate" and d.action.power == 100.0
+    assert d.action.target.y < -12.0  # out wide, past the man, where the forward gets it first
+    uncovered = [*players, mate(11, 20.0, -10.0)]
+    d = decide(state((5.0, -5.0), ball=(5.5, -5.0), players=uncovered, number=9), 9, 11, {})
+    assert d.method == "pass" and d.action.power is None and d.action.target.x > 22.0  # behind their line
+    assert d.action.target.y < -12.0  # out wide too, past the man
     d = decide(state((5.0, -5.0), ball=(5.5, -5.0), players=players, number=9), 9, 11, {})
     assert d.method == "dribble"  # nobody of ours to reach it: carry it as before
 
