@@ -33,6 +33,7 @@ from cf_decision.receive import Announced, to_announce
 from cf_decision.requests import choice_text, same_request
 from cf_decision.set_piece import KICKING, SetPieceTaker
 from cf_decision.shared import merged, to_tell, told_to
+from cf_decision.situation import offside_mates
 from cf_decision.talk import NOT_ME, Listener, pass_word, seen_claims
 from cf_decision.touch import LastTouch
 from cf_decision.without_ball import NEVER, state_eta
@@ -129,7 +130,9 @@ class PolicyTeam:
                     continue  # heard through the say, next cycle
                 if st.ball and st.ball.positioning:  # the passer keeps his own, as the decision node does
                     ball = (st.ball.positioning.x, st.ball.positioning.y)
-                    self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, st.time + 1)
+                    self.passes.setdefault(n, {})[passer] = Announced(
+                        passer, action, ball, st.time + 1, offside_mates(st, ball)
+                    )
                     if n != passer:
                         self.touches.setdefault(n, LastTouch()).played_by_mate()
 
@@ -138,7 +141,7 @@ class PolicyTeam:
         for passer, action, when in self.listeners.setdefault(n, Listener()).hear(st):
             if st.ball and st.ball.positioning:
                 ball = (st.ball.positioning.x, st.ball.positioning.y)
-                self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, when)
+                self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, when, offside_mates(st, ball))
                 self.touches.setdefault(n, LastTouch()).played_by_mate()
 
     def write_logs(self) -> None:

@@ -42,7 +42,7 @@ from .receive import Announced, to_announce
 from .requests import ActionRequests, choice_text, request_text
 from .set_piece import KICKING, SetPieceTaker
 from .shared import Heard, merged, to_tell, told_to
-from .situation import Decision, xy
+from .situation import Decision, offside_mates, xy
 from .talk import NOT_ME, Listener, pass_word, seen_claims
 from .touch import LastTouch
 from .without_ball import NEVER, state_eta
@@ -102,6 +102,7 @@ class DecisionNode(GuardedNode, Node):
         self.heard = Heard()  # what team-mates told they saw (shared.py)
         self.listener = Listener()  # what team-mates said (talk say)
         self.last_ball: tuple[float, float] | None = None  # where I believed the ball last
+        self.last_offside: frozenset[int] = frozenset()  # which of us I believed offside then
         self.perception: str | None = None
         self.subscription = None
         self.last_inform = 0.0
@@ -162,6 +163,7 @@ class DecisionNode(GuardedNode, Node):
             self.requests.stats.missed += state.time - self.last_time - 1
         self.last_time = state.time
         self.last_ball = xy(state.ball.positioning) if state.ball else None
+        self.last_offside = offside_mates(state, self.last_ball) if self.last_ball else frozenset()
         if self.says:
             self._read_says(state)
             claims = seen_claims(state, self.number, self.listener.not_theirs(state.time))
@@ -194,7 +196,9 @@ class DecisionNode(GuardedNode, Node):
             if not self.says:
                 self._tell_mates(self._exec(decision))
             # Kept as team-mates keep it: the passer runs on after it (support.go_spot).
-            self.passes[self.number] = Announced(self.number, decision.action, self.last_ball, state.time + 1)
+            self.passes[self.number] = Announced(
+                self.number, decision.action, self.last_ball, state.time + 1, self.last_offside
+            )
 
     def _request(self, decision: Decision) -> None:
         provider = self.agent.provider("Action", team=self.team, player_number=self.number)
@@ -216,7 +220,7 @@ class DecisionNode(GuardedNode, Node):
         cycle later, so its kick is taken to be in the cycle it was heard."""
         for passer, action, when in self.listener.hear(state):
             if self.last_ball is not None:
-                self.passes[passer] = Announced(passer, action, self.last_ball, when)
+                self.passes[passer] = Announced(passer, action, self.last_ball, when, self.last_offside)
                 self.touch.played_by_mate()
 
     def _exec(self, decision: Decision) -> str:
@@ -281,7 +285,9 @@ class DecisionNode(GuardedNode, Node):
                 self.heard.keep(number, word)
             elif isinstance(expr, Exec) and expr.method == "pass" and isinstance(expr.action, act.Pass):
                 if self.last_ball is not None and self.last_time is not None:
-                    self.passes[number] = Announced(number, expr.action, self.last_ball, self.last_time + 1)
+                    self.passes[number] = Announced(
+                        number, expr.action, self.last_ball, self.last_time + 1, self.last_offside
+                    )
                     self.touch.played_by_mate()
                 return
             self.claims[number] = (int(dict(msg.user)["X-eta"]), time.monotonic())  # (KeyError: a word without)

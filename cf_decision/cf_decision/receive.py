@@ -30,13 +30,15 @@ Point = tuple[float, float]
 @dataclass(frozen=True)
 class Announced:
     """A team-mate's pass request as heard: who asked, the action, where the ball was (as the
-    hearer believed) and the game time it is taken to leave the foot (the cycle after it was asked
-    for: the earliest the action kicks it)."""
+    hearer believed), the game time it is taken to leave the foot (the cycle after it was asked
+    for: the earliest the action kicks it), and which of us stood offside then (as the hearer
+    believed: :func:`situation.offside_mates`)."""
 
     passer: int
     action: act.Pass
     ball: Point
     kicked: int
+    offside: frozenset[int] = frozenset()
 
 
 def to_announce(state: WorldState, decision: Decision) -> bool:
@@ -78,7 +80,8 @@ def meeting(state: WorldState, number: int, passes: Sequence[Announced]) -> tupl
     """Where I meet the latest pass a team-mate announced, and in how many cycles, if it is mine to meet.
 
     Mine: passed to me, or, passed to a point, I am the team-mate who reaches its path first (as I
-    believe: the passer left out, ties to the lower number). The ball is taken to roll from its
+    believe: the passer and those offside when it was heard left out, ties to the lower number,
+    as the passer chose). The ball is taken to roll from its
     kick as the pass was asked for, and, once I have seen it rolling (:func:`rolling`), as I see
     it. None once it has rolled past my reach, or AWAIT_MAX cycles after its kick.
     """
@@ -92,6 +95,8 @@ def meeting(state: WorldState, number: int, passes: Sequence[Announced]) -> tupl
     to = pass_.action.to.player_number if pass_.action.to is not None else None
     if to is not None and to != number:
         return None
+    if to is None and number in pass_.offside:
+        return None  # (a ball played to me by name is mine: the passer saw me onside)
     me = xy(state.me.positioning)
     path = pass_path(pass_, me)
     if path is None or elapsed >= len(path):
@@ -108,7 +113,7 @@ def meeting(state: WorldState, number: int, passes: Sequence[Announced]) -> tupl
     if mine is None:
         return None
     if to is None:
-        mates = [(n, runner) for n, runner in sides(state)[0] if n != pass_.passer]
+        mates = [(n, runner) for n, runner in sides(state)[0] if n != pass_.passer and n not in pass_.offside]
         others = ((reach.cycles_to_path(r.pos, rest, react=react, speed=r.speed), n) for n, r in mates)
         if any(c is not None and (c, n) < (mine, number) for c, n in others):
             return None

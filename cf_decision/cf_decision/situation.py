@@ -17,6 +17,7 @@ FIELD_HALF_LENGTH = FIELD.half_length
 GOAL = (FIELD_HALF_LENGTH, 0.0)
 OWN_GOAL = (-FIELD_HALF_LENGTH, 0.0)
 KICKABLE = 1.005  # m: a ball rcssserver's see shows at 1.0 m is surely kickable (the back-ends' skills kick it)
+ONSIDE_SLACK = 0.5  # m: a team-mate this little beyond their line at the kick counts as onside (belief noise)
 
 
 @dataclass(frozen=True)
@@ -142,3 +143,18 @@ def offside_line(state: WorldState, ball: tuple[float, float]) -> float | None:
     if len(xs) < 2:
         return None
     return max(xs[1], ball[0], 0.0)
+
+
+def offside_mates(state: WorldState, ball: tuple[float, float]) -> frozenset[int]:
+    """The shirt numbers of us (me too) beyond their offside line by more than ONSIDE_SLACK: none
+    of them may play a ball a team-mate kicks now. The passer's choice of receiver and the
+    receivers' choice of who meets a pass both leave them out, so the two agree."""
+    line = offside_line(state, ball)
+    if line is None:
+        return frozenset()
+    ours = [p for p in (state.me, *state.players) if p is not None and p.which_team is Team.OUR]
+    return frozenset(
+        p.player_number
+        for p in ours
+        if p.player_number is not None and p.positioning and p.positioning.x > line + ONSIDE_SLACK
+    )

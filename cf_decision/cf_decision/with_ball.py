@@ -12,7 +12,18 @@ from cf_lang.ontology import actions as act
 
 from . import reach
 from .set_piece import OUR_SET_PIECES
-from .situation import FIELD_HALF_LENGTH, GOAL, Decision, dist, offside_line, play_mode, point, sides, xy
+from .situation import (
+    FIELD_HALF_LENGTH,
+    GOAL,
+    Decision,
+    dist,
+    offside_line,
+    offside_mates,
+    play_mode,
+    point,
+    sides,
+    xy,
+)
 
 SHOOT_RANGE = 22.0  # at a set piece, shoot from within this distance
 SHOT_RANGE = 30.0  # in play, consider shots from within this distance
@@ -44,7 +55,6 @@ LOOK_BEHIND = 5.0  # m: at most this much nearer our goal than the ball
 THROUGH_DEPTHS = (6.0, 12.0, 18.0)  # m behind their last line a through ball is aimed
 THROUGH_LANES = (-24.0, -16.0, -8.0, 0.0, 8.0, 16.0, 24.0)  # y of the lanes it is aimed along
 THROUGH_MARGIN = 3  # cycles: a through ball runs past their men into their space: a wider margin than SAFE_MARGIN
-ONSIDE_SLACK = 0.5  # m: a team-mate this little beyond their line at the kick counts as onside (belief noise)
 
 
 def win_the_ball(state: WorldState, ball: tuple[float, float], why: str) -> Decision:
@@ -163,9 +173,9 @@ def best_pass(
     received within LONG_SHOT_RANGE of the goal count, the nearest the goal best (a set-up).
     """
     mates, opponents = sides(state)
+    offside = offside_mates(state, ball)  # a team-mate beyond their line at the kick may not play the ball
+    mates = [(n, r) for n, r in mates if n not in offside]
     line = offside_line(state, ball)
-    if line is not None:  # a team-mate beyond their line at the kick may not play the ball
-        mates = [(n, r) for n, r in mates if r.pos[0] <= line + ONSIDE_SLACK]
     targets = []
     for number, runner in mates:
         here = runner.pos

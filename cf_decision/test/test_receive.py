@@ -9,7 +9,8 @@ from test_policy import at, mate, opp, state
 from cf_decision import reach
 from cf_decision.policy import decide
 from cf_decision.receive import AWAIT_MAX, Announced, meeting, to_announce
-from cf_decision.situation import Decision
+from cf_decision.situation import Decision, offside_mates
+from cf_decision.with_ball import best_pass
 from cf_lang.ontology import Ball, Player, PlayMode, Team, Velocity
 from cf_lang.ontology import actions as act
 
@@ -133,3 +134,30 @@ def test_a_pass_seen_rolling_near_its_meeting_is_got_by_the_intercept_skill_a_fa
     far = rolling_ball.model_copy(update={"me": rolling_ball.me.model_copy(update={"positioning": at(-2.0, 6.0)})})
     got = decide(far, 6, 11, {4: 90, 5: 3}, passes=passes)
     assert got.method == "moveTo" and "meet the pass (" in got.why
+
+
+def test_a_team_mate_offside_when_the_pass_is_heard_leaves_it_to_an_onside_one():
+    # Their line at x 25 (keeper and one man); blue 9 stands 3 m beyond it, blue 8 onside.
+    ball, passer, off9, on8 = (10.0, 0.0), (9.5, 0.0), (28.0, 8.0), (20.0, 12.0)
+    theirs = [opp(1, 50.0, 0.0, goalie=True), opp(2, 25.0, 5.0)]
+    as9 = state(off9, ball, [mate(4, *passer), mate(8, *on8), *theirs], number=9)
+    as8 = state(on8, ball, [mate(4, *passer), mate(9, *off9), *theirs], number=8)
+    assert offside_mates(as9, ball) == offside_mates(as8, ball) == frozenset({9})
+    into_space = act.Pass(target=at(35.0, 10.0))
+    # Nearer its path, blue 9 would meet it if he did not count as offside: this is what changes.
+    assert meeting(as9, 9, [Announced(4, into_space, ball, 101)]) is not None
+    assert meeting(as8, 8, [Announced(4, into_space, ball, 101)]) is None
+    heard = [Announced(4, into_space, ball, 101, offside_mates(as8, ball))]
+    assert meeting(as9, 9, heard) is None
+    spot, _ = meeting(as8, 8, heard)
+    assert on_segment(spot, ball, (45.0, 14.0))  # on its way (it rolls on past its target)
+    # The passer picks his receiver by the same rule: never blue 9, and a ball to a point is met by
+    # the team-mate he meant.
+    as4 = state(passer, ball, [mate(8, *on8), mate(9, *off9), *theirs], number=4)
+    choice = best_pass(as4, ball)
+    assert choice is not None and choice.number == 8
+    if choice.target is not None:
+        meant = Announced(4, act.Pass(target=at(*choice.target)), ball, 101, offside_mates(as8, ball))
+        assert meeting(as8, 8, [meant]) is not None
+    # A ball played to him by name stays his (the passer believed him onside).
+    assert meeting(as9, 9, [Announced(4, to(9), ball, 101, frozenset({9}))]) is not None
