@@ -326,11 +326,18 @@ def set_up(world: World, me: SimPlayer) -> Command | None:
 
 
 class KickTo(Skill):
-    """Shoot or pass: go to the ball if needed, then kick it towards a point."""
+    """Shoot or pass: go to the ball if needed, then kick it towards a point.
 
-    def __init__(self, name: str, x: float, y: float, power: float | None, approach: bool = True):
+    ``fastest``: at full power, as fast as the ball may go (a shot), not as fast as one kick sends
+    a still ball (see :meth:`_full_power`).
+    """
+
+    def __init__(
+        self, name: str, x: float, y: float, power: float | None, approach: bool = True, fastest: bool = False
+    ):
         super().__init__()
         self.name, self.x, self.y, self.power, self.approach = name, x, y, power, approach
+        self.fastest = fastest
         self.kicked = False
         self.touches = 0  # first touches made (FIRST_TOUCHES at most): then the kick goes whatever it gives
         self.set_up = 0  # cycles spent stepping up to the ball of our set piece
@@ -378,7 +385,7 @@ class KickTo(Skill):
         23 that left at 2.7 m/cycle or faster went in, 3 of 28 slower ones; from 20 m a shot at 3.0
         crosses the line in 8 cycles, one at 2.5 in 10.6.
         """
-        return world.params.ball_speed_max if self.name == "shoot" else world.params.ball_accel_max
+        return world.params.ball_speed_max if self.fastest else world.params.ball_accel_max
 
 
 class Dribble(Skill):
@@ -646,7 +653,7 @@ def skill_for(method: str, action, side: Side, world: World, me: SimPlayer) -> S
         return Dribble(*_absolute(side, action.target.x, action.target.y), action.speed)
     if isinstance(action, act.Shoot):
         target = _absolute(side, action.target.x, action.target.y) if action.target else opp_goal
-        return KickTo("shoot", *target, action.power)
+        return KickTo("shoot", *target, action.power, fastest=True)
     if isinstance(action, act.Pass):
         if action.to is not None:
             mate = world.players.get((side, action.to.player_number or 0))
