@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import signal
 import subprocess
@@ -20,6 +21,7 @@ from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import line_errors
 from rcss_belief_error import line_table as believed_line_table
 from rcss_belief_error import table as belief_table
+from rcss_compare import main as compare_main
 from rcss_drill import HOLD, Try, ended_for_them, placement, situations, spread, tries_of
 from rcss_drill import table as drill_table
 from rcss_goals import goal_rows, goals, summary
@@ -955,3 +957,53 @@ def test_each_shot_of_ours_tells_its_touches_speed_aim_where_it_crosses_and_what
     assert caught.speed == pytest.approx(2.0) and caught.cross == pytest.approx(0.0)
     rows = shots_table(found, missed)
     assert rows[-1].startswith("\n2 shots (1 choices never kicked): 1 goals, 2 on a way between the posts")
+
+
+def _drill_out(path: Path, furthest: list[float]) -> Path:
+    tries = [
+        {
+            "start": 100 * i,
+            "taken": True,
+            "furthest": f,
+            "kept": 30,
+            "shots": int(f > 40.0),
+            "won_there": 0,
+            "goals_for": 0,
+            "goals_against": 0,
+        }
+        for i, f in enumerate(furthest)
+    ]
+    path.mkdir()
+    (path / "drill.json").write_text(json.dumps({"drill": "kick-off", "tries": tries}))
+    return path
+
+
+def test_two_codes_drills_are_set_side_by_side_with_what_chance_alone_gives(tmp_path, capsys):
+    low = _drill_out(tmp_path / "low", [10.0] * 25 + [20.0] * 5)  # 5 of 30 into their third
+    high = _drill_out(tmp_path / "high", [10.0] * 5 + [20.0] * 24 + [45.0])  # 25 of 30, one shot
+    again = _drill_out(tmp_path / "again", [10.0] * 25 + [20.0] * 5)
+    assert compare_main(["--a", str(low), "--b", str(high), "--resamples", "2000"]) == 0
+    rows = {
+        r.split("|")[1].strip(): [c.strip() for c in r.split("|")[2:-1]]
+        for r in capsys.readouterr().out.splitlines()
+        if r.startswith("| ")
+    }
+    a, b, diff, interval, p = rows["into their third"]
+    assert (a, b, diff) == ("17%", "83%", "+67%") and float(p) < 0.01
+    lo, hi = (float(x.rstrip("%")) for x in interval.split(" .. "))
+    assert 0 < lo < 67 < hi
+    assert rows["with a shot"][:2] == ["0%", "3%"]
+    # The same tries on both sides: no difference, and chance gives as much every time.
+    assert compare_main(["--a", str(low), "--b", str(again), "--resamples", "500"]) == 0
+    same = next(r for r in capsys.readouterr().out.splitlines() if r.startswith("| into their third"))
+    assert same.split("|")[4].strip() == "+0%" and same.split("|")[6].strip() == "1.00"
+    # A series is not set beside a drill, and a directory with neither is refused.
+    series = tmp_path / "series"
+    series.mkdir()
+    (series / "series.json").write_text(
+        json.dumps([{"score": [0, 3], "shots": [1, 30], "possession": [0.3, 0.7], "attacking": [0.02, 0.3]}])
+    )
+    assert compare_main(["--a", str(low), "--b", str(series)]) == 2
+    assert compare_main(["--a", str(tmp_path), "--b", str(series)]) == 2
+    assert compare_main(["--a", str(series), "--b", str(series), "--resamples", "100"]) == 0
+    assert "| goals against | 3.00 | 3.00 | +0.00 |" in capsys.readouterr().out
