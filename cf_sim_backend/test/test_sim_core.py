@@ -223,6 +223,42 @@ def test_offside():
     assert "offside l 9" in events and w.mode == "free_kick_r"
 
 
+def test_a_stoppage_ends_the_offsides_of_the_last_kick_and_a_kick_in_makes_none():
+    # Left 10 shoots over their goal line with left 9 beyond their last defender: the goal kick that
+    # follows ends it, so left 9 may take our next set piece (he was called offside at it before).
+    players = (
+        (Side.LEFT, 10, 30.0, 0.0, 0.0),
+        (Side.LEFT, 9, 45.0, 20.0, 0.0),
+        (Side.RIGHT, 1, 50.0, 0.0, 180.0),
+        (Side.RIGHT, 4, 35.0, -5.0, 180.0),
+    )
+    sim = sim_with(*players)
+    w = sim.world
+    w.ball.x, w.ball.y = 30.6, 0.0
+    sim.command(Side.LEFT, 10, "kick", 100, 20)  # wide of the post
+    events = [e for _ in range(30) for e in sim.step()]
+    assert any(e.startswith("goal kick r") for e in events) and w.mode.startswith("goal_kick_r"), events
+    referee.start_set_piece(w, "free_kick", Side.LEFT, 44.5, 20.0)
+    w.ball.x, w.ball.y = 45.6, 20.0
+    sim.command(Side.LEFT, 9, "kick", 50, 0)
+    assert not any(e.startswith("offside") for e in sim.step())
+    # A kick-in puts nobody offside: left 9, beyond their line at left 10's throw, plays on.
+    sim = sim_with(*players)
+    w = sim.world
+    referee.start_set_piece(w, "kick_in", Side.LEFT, 30.6, 33.0)
+    w.player(Side.LEFT, 10).x, w.player(Side.LEFT, 10).y = 30.0, 33.0
+    w.player(Side.LEFT, 9).x, w.player(Side.LEFT, 9).y, w.player(Side.LEFT, 9).body = 40.0, 33.0, 180.0
+    sim.command(Side.LEFT, 10, "kick", 60, 0)  # along the touch line to 9
+    events = []
+    for _ in range(40):
+        if physics.kickable(w, w.player(Side.LEFT, 9)):
+            sim.command(Side.LEFT, 9, "kick", 50, 180)
+        events += sim.step()
+        if w.player(Side.LEFT, 9).counts[0] or w.mode != "play_on":
+            break
+    assert not any(e.startswith("offside") for e in events) and w.player(Side.LEFT, 9).counts[0] == 1, events
+
+
 def test_set_piece_keeps_opponents_away_and_only_the_side_may_kick():
     sim = sim_with((Side.LEFT, 7, -0.5, 0.0, 0.0), (Side.RIGHT, 9, 1.0, 0.0, 180.0))
     w = sim.world

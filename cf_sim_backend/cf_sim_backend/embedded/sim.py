@@ -165,6 +165,10 @@ class Simulator:
             events.append("drop ball")
         if w.last_touch is not None and w.mode == "play_on":
             self.stats["possession"][w.last_touch[0]] += 1
+        if w.mode != "play_on":
+            # Any stoppage ends the offsides of the last kick (rcssserver's OffsideRef::playModeChange):
+            # a forward beyond their line at a shot that went out was called at our next kick-off.
+            self._offside = {Side.LEFT: set(), Side.RIGHT: set()}
         event = referee.advance_clock(w)
         if event:
             events.append(event)
@@ -230,7 +234,9 @@ class Simulator:
         shot = referee.is_shot(w, p.side)
         if shot:
             self.stats["shots"][p.side] += 1
-        self._offside[p.side] = referee.offside_players(w, p.side, p.number)
+        # As rcssserver's OffsideRef: no offside from a goal kick, a kick-in or a corner kick.
+        no_offside = w.mode.startswith(("goal_kick", "kick_in", "corner_kick"))
+        self._offside[p.side] = set() if no_offside else referee.offside_players(w, p.side, p.number)
         self._offside[p.side.other] = set()
         if piece_side is not None:
             referee.set_mode(w, "play_on")
