@@ -238,6 +238,15 @@ def test_a_stoppage_ends_the_offsides_of_the_last_kick_and_a_kick_in_makes_none(
     sim.command(Side.LEFT, 10, "kick", 100, 20)  # wide of the post
     events = [e for _ in range(30) for e in sim.step()]
     assert any(e.startswith("goal kick r") for e in events) and w.mode.startswith("goal_kick_r"), events
+    # A goal kick is theirs to take, not a goal's pause: it was followed by our kick-off.
+    for _ in range(2 * w.params.goal_pause_cycles):
+        events += sim.step()
+    assert w.mode == "goal_kick_r" and not any(e.startswith("kick off") for e in events), events
+    w.ball.vx = 0.0
+    w.player(Side.RIGHT, 1).x, w.player(Side.RIGHT, 1).y = w.ball.x + 0.6, w.ball.y
+    sim.command(Side.RIGHT, 1, "kick", 100, 0)  # (facing their own goal: back into the field)
+    events += sim.step()
+    assert w.mode == "play_on", events
     referee.start_set_piece(w, "free_kick", Side.LEFT, 44.5, 20.0)
     w.ball.x, w.ball.y = 45.6, 20.0
     sim.command(Side.LEFT, 9, "kick", 50, 0)

@@ -126,7 +126,7 @@ class Simulator:
                 referee.set_mode(w, f"kick_off_{w.kick_off_side.value}")
                 events.append(f"kick off {w.kick_off_side.value}")
             return events
-        if w.mode.startswith("goal_"):
+        if w.mode in ("goal_l", "goal_r"):  # (not goal_kick_*: a set piece, played on below)
             if w.time - w.mode_since >= w.params.goal_pause_cycles:
                 conceding = Side(w.mode[-1]).other
                 referee.place_for_kick_off(w, conceding)
