@@ -77,7 +77,9 @@ class PolicyTeam:
         }
         claims, may_touch = {}, {}
         for n, st in states.items():
-            may_touch[n] = self.takers.setdefault(n, SetPieceTaker()).may_touch(st)
+            touch = self.touches.setdefault(n, LastTouch())
+            touch.seen(st)  # (the decision node sees the state merged with team-mates' words)
+            may_touch[n] = self.takers.setdefault(n, SetPieceTaker()).may_touch(st) and not touch.offside(st.time)
             eta = state_eta(st)
             if eta is not None:
                 claims[n] = eta if may_touch[n] else NEVER
@@ -91,9 +93,7 @@ class PolicyTeam:
                 st, _ = merged(st, [word for m, word in words.items() if m != n and word is not None])
             me = w.player(self.side, n)
             mine = w.as_player(me)  # the skills read my type's parameters
-            touch = self.touches.setdefault(n, LastTouch())
-            touch.seen(st)
-            mate_touched = touch.team is Team.OUR
+            mate_touched = self.touches[n].team is Team.OUR
             heard = list(self.passes.get(n, {}).values())
             if self.says:
                 told = seen_claims(st, n, self.listeners[n].not_theirs(st.time))
@@ -130,19 +130,19 @@ class PolicyTeam:
                     continue  # heard through the say, next cycle
                 if st.ball and st.ball.positioning:  # the passer keeps his own, as the decision node does
                     ball = (st.ball.positioning.x, st.ball.positioning.y)
-                    self.passes.setdefault(n, {})[passer] = Announced(
-                        passer, action, ball, st.time + 1, offside_mates(st, ball)
-                    )
+                    offside = offside_mates(st, ball)
+                    self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, st.time + 1, offside)
                     if n != passer:
-                        self.touches.setdefault(n, LastTouch()).played_by_mate()
+                        self.touches.setdefault(n, LastTouch()).played_by_mate(st.time if n in offside else None)
 
     def _read_says(self, n: int, st) -> None:
         """The passes player ``n`` heard said (``--talk say``), as the decision component reads them."""
         for passer, action, when in self.listeners.setdefault(n, Listener()).hear(st):
             if st.ball and st.ball.positioning:
                 ball = (st.ball.positioning.x, st.ball.positioning.y)
-                self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, when, offside_mates(st, ball))
-                self.touches.setdefault(n, LastTouch()).played_by_mate()
+                offside = offside_mates(st, ball)
+                self.passes.setdefault(n, {})[passer] = Announced(passer, action, ball, when, offside)
+                self.touches.setdefault(n, LastTouch()).played_by_mate(when if n in offside else None)
 
     def write_logs(self) -> None:
         """Each player's decision log, where ``tools/rcss_match.py --out`` puts our players' logs."""
@@ -177,6 +177,7 @@ def play(
         else None
     )
     log = MatchLog(match / "match.jsonl", sim, 0.1) if match else None
+    offsides = 0  # ours: a player of ours called offside
     while not sim.finished:
         ours.commands()
         if theirs:
@@ -184,6 +185,7 @@ def play(
         else:
             chase_commands(sim, Side.RIGHT)
         events = sim.step()
+        offsides += sum(e.startswith(f"offside {Side.LEFT.value} ") for e in events)
         if log:
             log.cycle(sim.snapshot(), events)
     if log and match:
@@ -200,6 +202,7 @@ def play(
         "shots": sim.stats["shots"][Side.LEFT],
         "kicks": sim.stats["kicks"][Side.LEFT],
         "possession": sim.stats["possession"][Side.LEFT] / max(1, sum(sim.stats["possession"].values())),
+        "offsides": offsides,
     }
 
 
@@ -226,13 +229,13 @@ def main() -> None:
     print(
         f"{args.players} v {args.players}, {2 * args.half_cycles} cycles a match{talk}, cf_decision (left) v {them}\n"
     )
-    print(f"| seed | cf_decision | {them} | result | our shots | our kicks | our possession |")
-    print("|---:|---:|---:|---|---:|---:|---:|")
+    print(f"| seed | cf_decision | {them} | result | our shots | our kicks | our possession | our offsides |")
+    print("|---:|---:|---:|---|---:|---:|---:|---:|")
     for r in rows:
         result = "win" if r["ours"] > r["theirs"] else "draw" if r["ours"] == r["theirs"] else "loss"
         print(
             f"| {r['seed']} | {r['ours']} | {r['theirs']} | {result} | {r['shots']} | {r['kicks']} "
-            f"| {r['possession']:.0%} |"
+            f"| {r['possession']:.0%} | {r['offsides']} |"
         )
     wins = sum(r["ours"] > r["theirs"] for r in rows)
     draws = sum(r["ours"] == r["theirs"] for r in rows)
@@ -240,7 +243,8 @@ def main() -> None:
     print(
         f"\nwins {wins}, draws {draws}, losses {len(rows) - wins - draws}; goals "
         f"{sum(r['ours'] for r in rows)}:{sum(r['theirs'] for r in rows)} (difference {gd:+d}); "
-        f"median goal difference per match {statistics.median(r['ours'] - r['theirs'] for r in rows):+.1f}"
+        f"median goal difference per match {statistics.median(r['ours'] - r['theirs'] for r in rows):+.1f}; "
+        f"our offsides {sum(r['offsides'] for r in rows)}"
     )
 
 

@@ -170,8 +170,9 @@ class DecisionNode(GuardedNode, Node):
         else:
             now = time.monotonic()
             claims = {n: eta for n, (eta, when) in self.claims.items() if now - when < 0.5}
-        may_touch = self.taker.may_touch(state)
         self.touch.seen(state)
+        # Not at all while the rules forbid it: after my set piece, or offside at a team-mate's touch.
+        may_touch = self.taker.may_touch(state) and not self.touch.offside(state.time)
         mate_touched = self.touch.team is Team.OUR
         passes = list(self.passes.values())
         decision = decide(state, self.number, self.team_size, claims, may_touch, passes, mate_touched)
@@ -221,7 +222,7 @@ class DecisionNode(GuardedNode, Node):
         for passer, action, when in self.listener.hear(state):
             if self.last_ball is not None:
                 self.passes[passer] = Announced(passer, action, self.last_ball, when, self.last_offside)
-                self.touch.played_by_mate()
+                self.touch.played_by_mate(when if self.number in self.last_offside else None)
 
     def _exec(self, decision: Decision) -> str:
         """The ``(exec Player <method> ...)`` text of ``decision`` for my player."""
@@ -288,7 +289,7 @@ class DecisionNode(GuardedNode, Node):
                     self.passes[number] = Announced(
                         number, expr.action, self.last_ball, self.last_time + 1, self.last_offside
                     )
-                    self.touch.played_by_mate()
+                    self.touch.played_by_mate(self.last_time if self.number in self.last_offside else None)
                 return
             self.claims[number] = (int(dict(msg.user)["X-eta"]), time.monotonic())  # (KeyError: a word without)
         except (LanguageError, AttributeError, KeyError, TypeError, ValueError):

@@ -352,7 +352,7 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
 
 
 def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[float, float], bool]:
-    """Where to aim a ball kicked as hard as possible: of the ways a team-mate reaches first
+    """Where to aim a ball kicked as hard as possible: of the ways an onside team-mate reaches first
     (if any, else of all), the one on which the ball is met furthest from our goal; and whether
     a team-mate reaches it first.
 
@@ -361,7 +361,8 @@ def best_clearance(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[
     A ball that crosses the touch line first is lost where it crosses (their throw-in).
     """
     mates, opponents = sides(state)
-    ours_all = [runner for _, runner in mates]
+    offside = offside_mates(state, ball)  # (one of them who went for it would be called offside)
+    ours_all = [runner for n, runner in mates if n not in offside]
     ways = []
     for degrees in CLEAR_ANGLES:
         heading = math.radians(degrees)

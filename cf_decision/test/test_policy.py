@@ -586,6 +586,19 @@ def test_a_clearance_goes_where_a_team_mate_gets_it_first_else_where_they_get_it
     assert path[theirs - 1][0] > straight_path[straight - 1][0]  # they get it further from our goal
 
 
+def test_a_clearance_is_not_kept_by_a_team_mate_standing_offside():
+    # In their half: their line at x 25 (the keeper and one man); our only man up the field stands
+    # beyond it, and would be called offside if he went for the ball.
+    ball = (10.0, 0.0)
+    theirs = [opp(1, 50.0, 0.0, goalie=True), opp(4, 25.0, -10.0), opp(9, 14.0, 0.0)]
+    offside = [*theirs, mate(11, 32.0, 12.0)]
+    _, kept = best_clearance(state((9.5, 0.0), ball=ball, players=offside), ball)
+    assert not kept
+    onside = [*theirs, mate(11, 23.0, 12.0)]
+    _, kept = best_clearance(state((9.5, 0.0), ball=ball, players=onside), ball)
+    assert kept  # the same man a couple of metres onside gets it
+
+
 def test_in_their_half_a_ball_into_space_a_team_mate_reaches_first_comes_before_a_dribble():
     players = [opp(1, 50.0, 0.0, goalie=True), opp(4, 22.0, 3.0), opp(8, 18.0, 8.0), opp(6, 12.8, -7.5)]
     # Our forward, with a man on the line to his feet, and one of theirs covering the space behind

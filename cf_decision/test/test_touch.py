@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from cf_decision.touch import LastTouch
-from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, Team, Velocity, WorldState
+from cf_decision.touch import OFFSIDE_MEMORY, LastTouch
+from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, Velocity, WorldState
 
 
 def seen(ball, players, ball_age=0, time=10, velocity=None):
@@ -61,3 +61,37 @@ def test_a_ball_rolling_on_its_course_past_a_team_mate_was_not_touched_by_him():
     touch.seen(seen((-40.0, 0.0), shooter, time=1, velocity=(0.0, 0.0)))
     touch.seen(seen((-40.0, 0.0), [(4, Team.OUR, -40.5, 0.0, 0)], time=2, velocity=(0.0, 0.0)))
     assert touch.team is Team.OUR
+
+
+def as_nine(me, ball, players, time=10, mode=PlayMode.PLAY_ON):
+    """What our number 9 at ``me`` sees: their keeper, and one of theirs at x 25 (their line)."""
+    st = seen(ball, [(1, Team.OPP, 50.0, 0.0, 0), (4, Team.OPP, 25.0, -8.0, 0), *players], time=time)
+    me_ = Player(player_number=9, which_team=Team.OUR, positioning=AbsolutePositioning(x=me[0], y=me[1]))
+    return st.model_copy(update={"me": me_, "game": Game(time=time, play_mode=mode)})
+
+
+def test_a_player_offside_at_a_team_mates_touch_may_not_play_the_ball_until_somebody_else_touches_it():
+    touch = LastTouch()
+    dribbler = [(8, Team.OUR, 19.6, 5.0, 0)]
+    touch.seen(as_nine((30.0, 0.0), (20.0, 5.0), dribbler, time=10))  # a team-mate at the ball, I 5 m beyond their line
+    assert touch.team is Team.OUR and touch.offside(10) and touch.offside(10 + OFFSIDE_MEMORY)
+    assert not touch.offside(11 + OFFSIDE_MEMORY)  # a touch nobody followed is not kept for ever
+    # The ball comes my way: still not mine until somebody else has touched it.
+    touch.seen(as_nine((29.0, 0.0), (27.0, 3.0), [], time=14))
+    assert touch.offside(14)
+    touch.seen(as_nine((29.0, 0.0), (27.0, 3.0), [(4, Team.OPP, 27.3, 3.0, 0)], time=15))
+    assert touch.team is Team.OPP and not touch.offside(15)  # theirs now: play on
+    # Onside at the team-mate's touch: free to play it.
+    touch.seen(as_nine((24.0, 0.0), (20.0, 5.0), dribbler, time=20))
+    assert touch.team is Team.OUR and not touch.offside(20)
+    # At the ball 0.7 m beyond it (their line is the ball's x there), with a team-mate a metre
+    # behind it: nearer than him, the touch is mine; further, his.
+    touch.seen(as_nine((27.7, 3.0), (27.0, 3.0), [(10, Team.OUR, 26.0, 3.0, 0)], time=25))
+    assert touch.team is Team.OUR and not touch.offside(25)
+    touch.seen(as_nine((27.7, 3.0), (27.0, 3.0), [(10, Team.OUR, 26.6, 3.0, 0)], time=26))
+    assert touch.offside(26)
+    # A pass announced while I stood offside bars me too; any stoppage ends it.
+    touch.played_by_mate(offside_at=30)
+    assert touch.team is Team.OUR and touch.offside(31)
+    touch.seen(as_nine((30.0, 0.0), (27.0, 3.0), [], time=32, mode=PlayMode.FREE_KICK_OPP))
+    assert not touch.offside(32)
