@@ -51,7 +51,13 @@ class LastTouch:
         if play_mode(state) is not PlayMode.PLAY_ON:
             self.offside_at = None  # (any stoppage clears rcssserver's offside candidates)
         ball = state.ball
-        if ball is None or ball.positioning is None or (ball.age or 0) > FRESH:
+        if ball is None or ball.positioning is None:
+            return
+        if self.offside_at is not None and self.theirs_at(state, xy(ball.positioning)):
+            # An opponent believed at the ball, none of ours, has had it, seen touching it or not:
+            # far from the ball a forward saw too little to tell, and stood off their ball.
+            self.offside_at = None
+        if (ball.age or 0) > FRESH:
             return
         at, velocity = xy(ball.positioning), reach.per_cycle(ball.velocity)
         on_course = self.on_course(state.time, at, velocity)
@@ -70,6 +76,16 @@ class LastTouch:
             ours, theirs = nearest[Team.OUR], nearest[Team.OPP]
             if abs(ours - theirs) >= CLEARLY:
                 self.touched(Team.OUR if ours < theirs else Team.OPP, state, at, ours)
+
+    @staticmethod
+    def theirs_at(state: WorldState, ball: tuple[float, float]) -> bool:
+        """An opponent is believed within TOUCH of the ball, clearly nearer than any of us (however
+        lately either was seen)."""
+        near = nearest_of_each_side(state, ball)
+        theirs, ours = near.get(Team.OPP, math.inf), near.get(Team.OUR, math.inf)
+        if state.me and state.me.positioning:
+            ours = min(ours, dist(xy(state.me.positioning), ball))
+        return theirs <= TOUCH and theirs < ours - CLEARLY
 
     def touched(self, team: Team, state: WorldState, ball: tuple[float, float], mate: float | None) -> None:
         """``team`` touched the ball at ``ball``; ``mate``: how far the nearest team-mate (not me) was."""

@@ -81,6 +81,17 @@ def test_a_player_offside_at_a_team_mates_touch_may_not_play_the_ball_until_some
     assert touch.offside(14)
     touch.seen(as_nine((29.0, 0.0), (27.0, 3.0), [(4, Team.OPP, 27.3, 3.0, 0)], time=15))
     assert touch.team is Team.OPP and not touch.offside(15)  # theirs now: play on
+    # An opponent believed at the ball has it, though neither he nor the ball was seen lately.
+    touch.seen(as_nine((30.0, 0.0), (20.0, 5.0), dribbler, time=16))
+    assert touch.offside(16)
+    stale = as_nine((30.0, 0.0), (27.0, 3.0), [(4, Team.OPP, 27.5, 3.5, 6)], time=17)
+    touch.seen(stale.model_copy(update={"ball": stale.ball.model_copy(update={"age": 5})}))
+    assert not touch.offside(17)
+    # Not while one of ours is as near it (our dribbler, pressed).
+    touch.seen(as_nine((30.0, 0.0), (20.0, 5.0), dribbler, time=18))
+    pressed = as_nine((30.0, 0.0), (20.0, 5.0), [*dribbler, (4, Team.OPP, 20.5, 5.5, 6)], time=19)
+    touch.seen(pressed.model_copy(update={"ball": pressed.ball.model_copy(update={"age": 5})}))
+    assert touch.offside(19)
     # Onside at the team-mate's touch: free to play it.
     touch.seen(as_nine((24.0, 0.0), (20.0, 5.0), dribbler, time=20))
     assert touch.team is Team.OUR and not touch.offside(20)
