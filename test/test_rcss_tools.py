@@ -1006,4 +1006,9 @@ def test_two_codes_drills_are_set_side_by_side_with_what_chance_alone_gives(tmp_
     assert compare_main(["--a", str(low), "--b", str(series)]) == 2
     assert compare_main(["--a", str(tmp_path), "--b", str(series)]) == 2
     assert compare_main(["--a", str(series), "--b", str(series), "--resamples", "100"]) == 0
-    assert "| goals against | 3.00 | 3.00 | +0.00 |" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "| goals against | 3.00 | 3.00 | +0.00 |" in out and "offsides" not in out  # (not written then)
+    match = {"score": [1, 3], "shots": [2, 30], "possession": [0.3, 0.7], "attacking": [0.02, 0.3], "offsides": [2, 0]}
+    (series / "series.json").write_text(json.dumps([match, match]))
+    assert compare_main(["--a", str(series), "--b", str(series), "--resamples", "100"]) == 0
+    assert "| our offsides | 2.0 | 2.0 | +0.0 |" in capsys.readouterr().out

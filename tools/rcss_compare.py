@@ -5,7 +5,7 @@
 Each DIR is what ``tools/rcss_drill.py --out`` (its ``drill.json``) or ``tools/rcss_series.py --out``
 (its ``series.json``) wrote; A's and B's must be of one kind. A drill is measured per try taken
 (into their third, beyond 30 m, with a shot, the furthest the ball got while ours, how long we kept
-it), a series per match (goals and shots each way, possession, the ball ours in their third).
+it), a series per match (goals and shots each way, possession, the ball ours in their third, our offsides).
 
 For each measure: A's and B's values (a share, a mean or a median over the tries or matches), B
 minus A, a 95% interval for that difference (bootstrap: each side's tries or matches drawn again
@@ -48,6 +48,7 @@ SERIES = {
     "shots against": (lambda m: m["shots"][1], statistics.mean, "{:.1f}"),
     "possession": (lambda m: m["possession"][0], statistics.mean, "{:.0%}"),
     "ours in their third": (lambda m: m["attacking"][0], statistics.mean, "{:.1%}"),
+    "our offsides": (lambda m: m["offsides"][0], statistics.mean, "{:.1f}"),
 }
 
 
@@ -94,7 +95,10 @@ def table(kind: str, a: list[dict], b: list[dict], resamples: int = 10000, seed:
         "|---|---:|---:|---:|---:|---:|",
     ]
     for name, (of, stat, fmt) in measures.items():
-        xa, xb = [float(of(i)) for i in a], [float(of(i)) for i in b]
+        try:
+            xa, xb = [float(of(i)) for i in a], [float(of(i)) for i in b]
+        except (KeyError, IndexError, TypeError):
+            continue  # (a measure an older tool did not write)
         diff, (lo, hi), p = compare(xa, xb, stat, resamples, rng)
         pct = fmt.endswith("%}")
         signed = "{:+.0%}" if pct else fmt.replace("{:", "{:+")
