@@ -105,7 +105,8 @@ def decide(
     """The action for player ``number`` now. ``claims``: team-mates' announced times to the ball;
     ``passes``: the passes team-mates announced lately.
 
-    ``may_touch`` False: this player took our set piece and nobody else has touched the ball yet.
+    ``may_touch`` False: this player took our set piece, or stood offside at a team-mate's touch, and
+    nobody else has touched the ball since (the rules forbid him the ball).
     ``mate_touched``: a team-mate touched the ball last (the goalkeeper may not catch it).
     """
     me_pos = xy(state.me.positioning) if state.me else None
