@@ -116,6 +116,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--resamples", type=int, default=10000)
     ap.add_argument("--seed", type=int, default=0, help="of the resampling (the same seed, the same table)")
     args = ap.parse_args(argv)
+    if args.resamples < 1:
+        ap.error("--resamples must be 1 or more")
     try:
         kind_a, a = load(args.a)
         kind_b, b = load(args.b)
