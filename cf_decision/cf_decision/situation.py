@@ -145,16 +145,20 @@ def offside_line(state: WorldState, ball: tuple[float, float]) -> float | None:
     return max(xs[1], ball[0], 0.0)
 
 
+def onside(x: float, line: float | None) -> bool:
+    """Whether one of us at ``x`` may play a ball a team-mate kicks now, their offside line at
+    ``line`` (:func:`offside_line`; None: unknown, so onside): not beyond it by more than ONSIDE_SLACK."""
+    return line is None or x <= line + ONSIDE_SLACK
+
+
 def offside_mates(state: WorldState, ball: tuple[float, float]) -> frozenset[int]:
-    """The shirt numbers of us (me too) beyond their offside line by more than ONSIDE_SLACK: none
-    of them may play a ball a team-mate kicks now. The passer's choice of receiver and the
-    receivers' choice of who meets a pass both leave them out, so the two agree."""
+    """The shirt numbers of us (me too) not :func:`onside`: none of them may play a ball a
+    team-mate kicks now. The passer's choice of receiver and the receivers' choice of who meets a
+    pass both leave them out, so the two agree."""
     line = offside_line(state, ball)
-    if line is None:
-        return frozenset()
     ours = [p for p in (state.me, *state.players) if p is not None and p.which_team is Team.OUR]
     return frozenset(
         p.player_number
         for p in ours
-        if p.player_number is not None and p.positioning and p.positioning.x > line + ONSIDE_SLACK
+        if p.player_number is not None and p.positioning and not onside(p.positioning.x, line)
     )

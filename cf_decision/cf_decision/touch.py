@@ -20,7 +20,7 @@ import math
 from cf_lang.ontology import PlayMode, Team, WorldState
 
 from . import reach
-from .situation import ONSIDE_SLACK, dist, nearest_of_each_side, offside_line, play_mode, xy
+from .situation import dist, nearest_of_each_side, offside_line, onside, play_mode, xy
 
 TOUCH = 1.5  # m: a player this close to the ball may have touched it
 FRESH = 1  # cycles: only players (and a ball) seen this lately count
@@ -94,8 +94,7 @@ class LastTouch:
         me = xy(state.me.positioning) if state.me and state.me.positioning else None
         if team is not Team.OUR or me is None or mate is None or dist(me, ball) < mate:
             return  # theirs, or mine (nearer than any team-mate)
-        line = offside_line(state, ball)
-        if line is not None and me[0] > line + ONSIDE_SLACK:
+        if not onside(me[0], offside_line(state, ball)):
             self.offside_at = state.time
 
     def on_course(self, time: int, at: tuple[float, float], velocity: tuple[float, float]) -> bool:

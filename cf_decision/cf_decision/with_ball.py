@@ -19,6 +19,7 @@ from .situation import (
     dist,
     offside_line,
     offside_mates,
+    onside,
     play_mode,
     point,
     sides,
@@ -173,9 +174,8 @@ def best_pass(
     received within LONG_SHOT_RANGE of the goal count, the nearest the goal best (a set-up).
     """
     mates, opponents = sides(state)
-    offside = offside_mates(state, ball)  # a team-mate beyond their line at the kick may not play the ball
-    mates = [(n, r) for n, r in mates if n not in offside]
     line = offside_line(state, ball)
+    mates = [(n, r) for n, r in mates if onside(r.pos[0], line)]  # (as offside_mates: the others may not play it)
     targets = []
     for number, runner in mates:
         here = runner.pos
