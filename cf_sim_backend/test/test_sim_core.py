@@ -251,6 +251,20 @@ def test_a_stoppage_ends_the_offsides_of_the_last_kick_and_a_kick_in_makes_none(
     w.ball.x, w.ball.y = 45.6, 20.0
     sim.command(Side.LEFT, 9, "kick", 50, 0)
     assert not any(e.startswith("offside") for e in sim.step())
+    # Half time too: left 9, beyond their line at left 10's last kick, kicks off the second half.
+    sim = sim_with(*players)
+    w = sim.world
+    w.ball.x, w.ball.y = 30.6, 0.0
+    sim.command(Side.LEFT, 10, "kick", 20, 0)
+    sim.step()
+    referee.set_mode(w, "half_time")
+    w.kick_off_side = Side.LEFT
+    while w.mode != "kick_off_l":
+        sim.step()
+    w.ball.x, w.ball.y = 0.0, 0.0
+    w.player(Side.LEFT, 9).x, w.player(Side.LEFT, 9).y = -0.6, 0.0
+    sim.command(Side.LEFT, 9, "kick", 50, 0)
+    assert not any(e.startswith("offside") for e in sim.step()) and w.mode == "play_on"
     # A kick-in puts nobody offside: left 9, beyond their line at left 10's throw, plays on.
     sim = sim_with(*players)
     w = sim.world

@@ -115,6 +115,11 @@ class Simulator:
         events: list[str] = []
         if w.mode == "time_over":
             return events
+        if w.mode != "play_on":
+            # Any stoppage ends the offsides of the last kick (rcssserver's OffsideRef::playModeChange),
+            # before the set piece's kick makes new ones: a forward beyond their line at a shot that
+            # went out was called at our next kick-off (and, cleared at a step's end, after half time).
+            self._offside = {Side.LEFT: set(), Side.RIGHT: set()}
         body, self._body = self._body, {}
         neck, self._neck = self._neck, {}
         w.said, self._said = tuple((side, number, text) for (side, number), text in self._said.items()), {}
@@ -165,10 +170,6 @@ class Simulator:
             events.append("drop ball")
         if w.last_touch is not None and w.mode == "play_on":
             self.stats["possession"][w.last_touch[0]] += 1
-        if w.mode != "play_on":
-            # Any stoppage ends the offsides of the last kick (rcssserver's OffsideRef::playModeChange):
-            # a forward beyond their line at a shot that went out was called at our next kick-off.
-            self._offside = {Side.LEFT: set(), Side.RIGHT: set()}
         event = referee.advance_clock(w)
         if event:
             events.append(event)
