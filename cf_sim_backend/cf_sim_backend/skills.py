@@ -135,10 +135,10 @@ def first_touch(world: World, me: SimPlayer, x: float, y: float, wanted: float, 
     return _kick_for(me, touch.ax, touch.ay, kick_rate(world, me))
 
 
-def pressed(world: World, me: SimPlayer) -> bool:
-    """An opponent is within PRESSED of the ball."""
+def pressed(world: World, me: SimPlayer, within: float = PRESSED) -> bool:
+    """An opponent is within ``within`` m of the ball."""
     b = world.ball
-    return any(p.side is not me.side and distance(p.x, p.y, b.x, b.y) <= PRESSED for p in world.players.values())
+    return any(p.side is not me.side and distance(p.x, p.y, b.x, b.y) <= within for p in world.players.values())
 
 
 class Skill:
@@ -389,7 +389,8 @@ class KickTo(Skill):
 
 
 class Dribble(Skill):
-    """Push the ball a little ahead towards the target, run after it, repeat."""
+    """Push the ball a little ahead towards the target, run after it, repeat; with a man near,
+    keep it within reach every cycle."""
 
     name = "dribble"
 
@@ -397,19 +398,28 @@ class Dribble(Skill):
         super().__init__()
         self.x, self.y, self.speed = x, y, speed
         self.heading: float | None = None  # degrees: the way the last touch sent the ball
+        self.close_way: float | None = None  # degrees: the way the last close touch took
 
     def _step(self, world: World, me: SimPlayer) -> Step:
         b = world.ball
         if distance(b.x, b.y, self.x, self.y) <= 1.5:
             return Step([], "done")
         if distance(me.x, me.y, b.x, b.y) <= world.params.kickable_distance:
+            if pressed(world, me, CLOSE_PRESS):
+                return Step([self._close_touch(world, me)])
             push = dribble_push(world, me, self.speed)
             follow = _go(world, me, b.x + b.vx, b.y + b.vy, 100.0)
             if self._pushed(world, me, push):
                 # Pushed already: run (or turn) after it. Kicking again cost a cycle, and on
                 # rcssserver the ball was 3 m ahead of a dribbler who had touched it twice, then turned.
-                return Step([follow])
-            self.heading = dribble_way(world, me, self.x, self.y, push)
+                # Unless a man would be near it before I have it again.
+                margin = _dribble_margin(world, me, (b.vx, b.vy))
+                if margin is not None and margin >= CLOSE_MARGIN:
+                    return Step([follow])
+                return Step([self._close_touch(world, me)])
+            self.heading, margin = dribble_way(world, me, self.x, self.y, push, CLOSE_MARGIN)
+            if margin is None or margin < CLOSE_MARGIN:
+                return Step([self._close_touch(world, me)])
             off = norm_deg(self.heading - me.body)
             if abs(off) > DRIBBLE_FACING and math.hypot(b.vx, b.vy) < STILL and not pressed(world, me):
                 # Face the way first: pushed across the body, the ball runs off while he turns.
@@ -417,6 +427,42 @@ class Dribble(Skill):
             way = math.radians(self.heading)
             return Step([kick_towards(world, me, b.x + 10.0 * math.cos(way), b.y + 10.0 * math.sin(way), push)])
         return _tackle_for(world, me, self.x, self.y) or _chase_ball(world, me)
+
+    def _close_touch(self, world: World, me: SimPlayer) -> Command:
+        """A man near: the ball is kept within reach every cycle. A dash when it stays in reach after
+        it, a turn when the way is behind the body and the ball stays in reach meanwhile, else a
+        touch that lays it CLOSE_AHEAD in front of where I will be two cycles on (a dash between).
+
+        Pushed 4 m ahead as in open space, the ball was loose for most of the cycles to the next
+        touch, and a man pressing had it first: against HELIOS base 4 carries of 38 in their half
+        were kept (docs/performance.md, sessions 60-61).
+        """
+        b, prm = world.ball, world.params
+        self.heading = None  # the next open push picks its own way
+        way = self.close_way = close_way(world, me, self.x, self.y, self.close_way)
+        ux, uy = math.cos(math.radians(way)), math.sin(math.radians(way))
+        bx, by = b.x + b.vx, b.y + b.vy  # the ball next cycle, untouched
+        facing = abs(norm_deg(way - me.body)) <= DRIBBLE_FACING
+        body = math.radians(me.body)
+        accel = 100.0 * prm.dash_power_rate * prm.effort_max
+        dvx, dvy = me.vx + accel * math.cos(body), me.vy + accel * math.sin(body)
+        if math.hypot(dvx, dvy) > prm.player_speed_max:
+            dvx, dvy = _scaled(dvx, dvy, prm.player_speed_max)
+        if facing and _kept(me.x + dvx, me.y + dvy, me.body, bx, by):
+            return ("dash", 100.0)
+        if not facing and _kept(me.x + me.vx, me.y + me.vy, way, bx, by):
+            return ("turn", _turn_moment(world, me, norm_deg(way - me.body)))
+        # Where I will be two cycles on: this cycle's drift, then a dash if I face the way (else a turn).
+        mx = me.x + me.vx * (1.0 + prm.player_decay) + (accel * math.cos(body) if facing else 0.0)
+        my = me.y + me.vy * (1.0 + prm.player_decay) + (accel * math.sin(body) if facing else 0.0)
+        tx, ty = mx + CLOSE_AHEAD * ux, my + CLOSE_AHEAD * uy
+        rolls = 1.0 + prm.ball_decay
+        ax, ay = (tx - b.x) / rolls - b.vx, (ty - b.y) / rolls - b.vy
+        rate = kick_rate(world, me)
+        most = most_accel(world, rate)
+        if math.hypot(ax, ay) > most:
+            ax, ay = _scaled(ax, ay, most)
+        return _kick_for(me, ax, ay, rate)
 
     def _pushed(self, world: World, me: SimPlayer, push: float) -> bool:
         """The ball rolls on the way my last touch sent it; or, before my first, on a way a touch of
@@ -508,10 +554,62 @@ OPPONENT_REACH = 1.2  # m: an opponent has the ball within this (a base team's w
 BEHIND = 90.0  # degrees off the body: a dribbler goes after a ball this far round only after a turn
 
 
-def dribble_way(world: World, me: SimPlayer, x: float, y: float, push: float) -> float:
+CLOSE_PRESS = 4.0  # m: with an opponent this near the ball, a dribble keeps it within reach every cycle,
+CLOSE_MARGIN = 3  # cycles: and when an opponent could have a pushed ball less than this after I have it again
+CLOSE_AHEAD = 0.6  # m in front of the dribbler: where a close touch lays the ball
+CLOSE_REACH = 0.85  # m: a ball this near him next cycle is still his (kickable 1.085, less the kick's noise)
+CLOSE_GAP = 0.5  # m: nearer, he runs into it (player and ball sizes 0.385)
+CLOSE_LOOK = 2.0  # m along a close dribble's way: where its room from the opponents is measured
+CLOSE_ROOM = 2.0  # m: the room a close dribble's way needs there (a man's tackle reach)
+
+
+def close_way(world: World, me: SimPlayer, x: float, y: float, last: float | None) -> float:
+    """The way of a close dribble: towards (x, y) if it is open, else the last one while it is open
+    and within 90 degrees of (x, y), else the nearest open way off it (every 20 degrees, up to 60),
+    of none the one with the most room. Open: CLOSE_ROOM from every opponent (where he will be next
+    cycle) CLOSE_LOOK along it, and that point in the field.
+
+    Taken on the open push's reckoning (who has the pushed ball first), every slow push was the
+    dribbler's first, as he touches it again a cycle later: he walked the ball into a man standing
+    in his way. With 3 m of room asked, the dribble got into their third less often against HELIOS
+    base. A new way every cycle, each needing a turn, kicked the ball on the spot for ever (session 61).
+    """
+    prm = world.params
+    straight = direction_deg(me.x, me.y, x, y)
+    opponents = [(p.x + p.vx, p.y + p.vy) for p in world.players.values() if p.side is not me.side]
+
+    def room(way: float) -> float:
+        px = me.x + CLOSE_LOOK * math.cos(math.radians(way))
+        py = me.y + CLOSE_LOOK * math.sin(math.radians(way))
+        if abs(px) > prm.field_length / 2 or abs(py) > prm.field_width / 2:
+            return -1.0
+        return min((distance(px, py, ox, oy) for ox, oy in opponents), default=math.inf)
+
+    ways = [straight + off for off in DODGE_ANGLES]
+    if last is not None and abs(norm_deg(last - straight)) <= BEHIND:
+        ways.insert(1, last)
+    return next((way for way in ways if room(way) >= CLOSE_ROOM), max(ways, key=room))
+
+
+def _kept(x: float, y: float, body: float, bx: float, by: float) -> bool:
+    """A ball at (bx, by) is within reach of a player at (x, y) and in front of his body, clear of it."""
+    gap = distance(x, y, bx, by)
+    in_front = abs(norm_deg(direction_deg(x, y, bx, by) - body)) <= BEHIND
+    return CLOSE_GAP <= gap <= CLOSE_REACH and in_front
+
+
+def _scaled(x: float, y: float, length: float) -> tuple[float, float]:
+    """(x, y) cut to ``length``."""
+    size = math.hypot(x, y)
+    return x * length / size, y * length / size
+
+
+def dribble_way(
+    world: World, me: SimPlayer, x: float, y: float, push: float, need: int = 1
+) -> tuple[float, int | None]:
     """The direction (degrees) of a dribble's touch: towards (x, y) or the nearest way off it, up to
-    60 degrees, on which I have the ball again before any opponent can; of none, the one I am
-    soonest at relative to them.
+    60 degrees, on which I have the ball again ``need`` cycles or more before any opponent can; of
+    none, the one I am soonest at relative to them. With its margin (cycles; None: out of the field).
 
     A dribble is a pass to oneself: pushed straight at a defender, the ball rolled out of the
     dribbler's reach into the defender's, and against real teams that lost nearly every dribble
@@ -523,11 +621,11 @@ def dribble_way(world: World, me: SimPlayer, x: float, y: float, push: float) ->
     for off in DODGE_ANGLES:
         way = math.radians(straight + off)
         margin = _dribble_margin(world, me, (push * math.cos(way), push * math.sin(way)))
-        if margin is not None and margin > 0:
-            return straight + off
+        if margin is not None and margin >= need:
+            return straight + off, margin
         if margin is not None and (best_margin is None or margin > best_margin):
             best, best_margin = straight + off, margin
-    return best
+    return best, best_margin
 
 
 def _dribble_margin(world: World, me: SimPlayer, velocity: tuple[float, float]) -> int | None:

@@ -369,9 +369,9 @@ def test_a_dribble_takes_the_ball_round_a_man_in_its_way_not_into_him():
         closest = min(closest, distance(him.x, him.y, sim.world.ball.x, sim.world.ball.y))
         if step.status != "running":
             break
-    # The first push goes off the straight way (after a turn to face it: never across the body),
-    # the ball never comes within his reach, and it gets there.
-    assert kinds[0] == "turn" and pushed is not None and abs(pushed) >= 15.0
+    # A pushed ball would be his first: the dribble keeps it close, round him, never within his
+    # reach, and it gets there (taken straight at him it stuck at his feet).
+    assert pushed is not None and "dash" in kinds
     assert closest > 1.2
     assert step.status == "done" and distance(sim.world.ball.x, sim.world.ball.y, 15.0, 0.0) <= 1.6
 
@@ -425,6 +425,26 @@ def test_a_new_dribble_takes_a_fast_ball_coming_by_under_control_instead_of_chas
             sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
         sim.step()
         assert distance(me.x, me.y, ball.x, ball.y) < 3.0  # still his ball
+
+
+def test_a_dribble_with_a_man_near_keeps_the_ball_within_reach_every_cycle():
+    """Pushed metres ahead as in open space, the ball is loose for cycles, and a man pressing has it
+    first; with one near, each touch lays it just in front of where the dribbler will be."""
+    sim = sim_with((Side.LEFT, 10, 0.0, 0.0, 0.0), (Side.RIGHT, 4, 3.0, 3.0, -90.0))
+    ball = sim.world.ball
+    ball.x = 0.6
+    skill, me = skill_of(sim, Side.LEFT, 10, exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10))
+    furthest, kinds = 0.0, []
+    for _ in range(12):
+        step = skill.step(sim.world, me)
+        for cmd in step.commands:
+            kinds.append(cmd[0])
+            sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
+        sim.step()
+        furthest = max(furthest, distance(me.x, me.y, ball.x, ball.y))
+    assert furthest <= sim.world.params.kickable_distance  # never out of his reach
+    assert kinds.count("kick") >= 4 and "dash" in kinds  # touched again and again, running on between
+    assert me.x > 4.0  # and it went on towards the target
 
 
 def test_hold_ball_keeps_the_ball_in_reach_on_the_side_away_from_the_man_near():
