@@ -68,7 +68,10 @@ class Dribble(Concept):
 
     target: AbsolutePositioning
     speed: float = Field(
-        default=60.0, ge=0.0, le=100.0, description="up to 70 the ball stays a step ahead; above, it runs ahead"
+        default=60.0,
+        ge=0.0,
+        le=100.0,
+        description="up to 70 the ball stays a step ahead; above, it runs ahead; an opponent near, it stays within reach",
     )
 
 
