@@ -28,6 +28,16 @@ def run(sim, side, number, text, cycles=300):
     return "running", skill.cycles
 
 
+def cycle(sim, skill, me, kinds):
+    """One cycle of ``skill`` for ``me`` on the simulator; its commands' kinds go into ``kinds``."""
+    step = skill.step(sim.world, me)
+    for cmd in step.commands:
+        kinds.append(cmd[0])
+        sim.command(me.side, me.number, cmd[0], *cmd[1:])
+    sim.step()
+    return step
+
+
 def skill_of(sim, side, number, text):
     """The skill an exec starts for player ``number``, and the player."""
     me = sim.world.player(side, number)
@@ -359,11 +369,7 @@ def test_a_dribble_takes_the_ball_round_a_man_in_its_way_not_into_him():
     skill, me = skill_of(sim, Side.LEFT, 10, exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10))
     him, closest, pushed, kinds = sim.world.player(Side.RIGHT, 4), 99.0, None, []
     for _ in range(40):
-        step = skill.step(sim.world, me)
-        for cmd in step.commands:
-            kinds.append(cmd[0])
-            sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
-        sim.step()
+        step = cycle(sim, skill, me, kinds)
         if pushed is None and "kick" in kinds:
             pushed = math.degrees(math.atan2(sim.world.ball.vy, sim.world.ball.vx))
         closest = min(closest, distance(him.x, him.y, sim.world.ball.x, sim.world.ball.y))
@@ -436,11 +442,7 @@ def test_a_dribble_with_a_man_near_keeps_the_ball_within_reach_every_cycle():
     skill, me = skill_of(sim, Side.LEFT, 10, exec_("dribble", ":target (AbsolutePositioning :x 15 :y 0)", 10))
     furthest, kinds = 0.0, []
     for _ in range(12):
-        step = skill.step(sim.world, me)
-        for cmd in step.commands:
-            kinds.append(cmd[0])
-            sim.command(Side.LEFT, 10, cmd[0], *cmd[1:])
-        sim.step()
+        cycle(sim, skill, me, kinds)
         furthest = max(furthest, distance(me.x, me.y, ball.x, ball.y))
     assert furthest <= sim.world.params.kickable_distance  # never out of his reach
     assert kinds.count("kick") >= 4 and "dash" in kinds  # touched again and again, running on between
