@@ -49,6 +49,12 @@ def _turn_moment(world: World, me: SimPlayer, angle: float) -> float:
     return max(-180.0, min(180.0, angle * (1.0 + world.params.inertia_moment * speed)))
 
 
+def _off_field(world: World, x: float, y: float, edge: float = 0.0) -> bool:
+    """(x, y) lies beyond the touch lines or the goal lines, or within ``edge`` m inside them."""
+    prm = world.params
+    return abs(x) > prm.field_length / 2 - edge or abs(y) > prm.field_width / 2 - edge
+
+
 def _absolute(side: Side, x: float, y: float) -> tuple[float, float]:
     return to_own_frame(side, x, y)  # turning by 180 degrees is its own inverse
 
@@ -100,6 +106,21 @@ def _kick_for(me: SimPlayer, ax: float, ay: float, rate: float) -> Command:
     """The kick that gives the ball the acceleration (ax, ay)."""
     direction = norm_deg(math.degrees(math.atan2(ay, ax)) - me.body)
     return ("kick", max(0.0, min(100.0, math.hypot(ax, ay) / rate)), direction)
+
+
+def _kick_capped(world: World, me: SimPlayer, ax: float, ay: float) -> Command:
+    """The kick that gives the ball the acceleration (ax, ay), or as much of it as one touch can."""
+    rate = kick_rate(world, me)
+    most = most_accel(world, rate)
+    if math.hypot(ax, ay) > most:
+        ax, ay = _scaled(ax, ay, most)
+    return _kick_for(me, ax, ay, rate)
+
+
+def _scaled(x: float, y: float, length: float) -> tuple[float, float]:
+    """(x, y) cut to ``length``."""
+    size = math.hypot(x, y)
+    return x * length / size, y * length / size
 
 
 def kick_reach(world: World, me: SimPlayer, x: float, y: float, rate: float | None = None) -> float | None:
@@ -235,7 +256,7 @@ def run_distances(world: World, me: SimPlayer, dashes: int, speed: float | None 
     prm = world.params
     v, covered, out = math.hypot(me.vx, me.vy) if speed is None else speed, 0.0, [0.0]
     for _ in range(dashes):
-        v = min(prm.player_speed_max, v + 100.0 * prm.dash_power_rate * prm.effort_max)
+        v = min(prm.player_speed_max, v + prm.dash_accel)
         covered += v
         out.append(covered)
         v *= prm.player_decay
@@ -430,8 +451,9 @@ class Dribble(Skill):
 
     def _close_touch(self, world: World, me: SimPlayer) -> Command:
         """A man near: the ball is kept within reach every cycle. A dash when it stays in reach after
-        it, a turn when the way is behind the body and the ball stays in reach meanwhile, else a
-        touch that lays it CLOSE_AHEAD in front of where I will be two cycles on (a dash between).
+        it, a turn when the way is more than DRIBBLE_FACING off the body and the ball stays in reach
+        meanwhile, else a touch that lays it CLOSE_AHEAD in front of where I will be two cycles on
+        (a dash between).
 
         Pushed 4 m ahead as in open space, the ball was loose for most of the cycles to the next
         touch, and a man pressing had it first: against HELIOS base 4 carries of 38 in their half
@@ -444,7 +466,7 @@ class Dribble(Skill):
         bx, by = b.x + b.vx, b.y + b.vy  # the ball next cycle, untouched
         facing = abs(norm_deg(way - me.body)) <= DRIBBLE_FACING
         body = math.radians(me.body)
-        accel = 100.0 * prm.dash_power_rate * prm.effort_max
+        accel = prm.dash_accel
         dvx, dvy = me.vx + accel * math.cos(body), me.vy + accel * math.sin(body)
         if math.hypot(dvx, dvy) > prm.player_speed_max:
             dvx, dvy = _scaled(dvx, dvy, prm.player_speed_max)
@@ -457,12 +479,7 @@ class Dribble(Skill):
         my = me.y + me.vy * (1.0 + prm.player_decay) + (accel * math.sin(body) if facing else 0.0)
         tx, ty = mx + CLOSE_AHEAD * ux, my + CLOSE_AHEAD * uy
         rolls = 1.0 + prm.ball_decay
-        ax, ay = (tx - b.x) / rolls - b.vx, (ty - b.y) / rolls - b.vy
-        rate = kick_rate(world, me)
-        most = most_accel(world, rate)
-        if math.hypot(ax, ay) > most:
-            ax, ay = _scaled(ax, ay, most)
-        return _kick_for(me, ax, ay, rate)
+        return _kick_capped(world, me, (tx - b.x) / rolls - b.vx, (ty - b.y) / rolls - b.vy)
 
     def _pushed(self, world: World, me: SimPlayer, push: float) -> bool:
         """The ball rolls on the way my last touch sent it; or, before my first, on a way a touch of
@@ -503,14 +520,9 @@ class HoldBall(Skill):
             return Step([], "failed", "the ball is out of reach")
         spot = hold_spot(world, me)
         ax, ay = spot[0] - b.x - b.vx, spot[1] - b.y - b.vy
-        need = math.hypot(ax, ay)
-        if need <= HOLD_LAID:
+        if math.hypot(ax, ay) <= HOLD_LAID:
             return Step([])
-        rate = kick_rate(world, me)
-        most = most_accel(world, rate)
-        if need > most:  # as near the spot as one touch gets it
-            ax, ay = ax * most / need, ay * most / need
-        return Step([_kick_for(me, ax, ay, rate)])
+        return Step([_kick_capped(world, me, ax, ay)])  # as near the spot as one touch gets it
 
 
 HOLD_RADIUS = 0.7  # m from my centre: inside the kickable distance (1.085) with room for the kick's noise
@@ -524,7 +536,6 @@ def hold_spot(world: World, me: SimPlayer) -> tuple[float, float]:
     every 30 degrees, the point furthest from the nearest opponent within HOLD_NEAR (where he will be);
     with nobody near, in front of my body. Of two as far, the one nearer the front of my body (a
     touch from there is the strongest)."""
-    prm = world.params
     cx, cy = me.x + me.vx, me.y + me.vy
     near = [
         (p.x + p.vx, p.y + p.vy)
@@ -535,7 +546,7 @@ def hold_spot(world: World, me: SimPlayer) -> tuple[float, float]:
     for degrees in range(0, 360, 30):
         heading = math.radians(me.body + degrees)
         x, y = cx + HOLD_RADIUS * math.cos(heading), cy + HOLD_RADIUS * math.sin(heading)
-        if abs(x) > prm.field_length / 2 - HOLD_EDGE or abs(y) > prm.field_width / 2 - HOLD_EDGE:
+        if _off_field(world, x, y, HOLD_EDGE):
             continue
         room = min((distance(x, y, ox, oy) for ox, oy in near), default=0.0)
         key = (round(room, 1), -abs(norm_deg(degrees)))
@@ -574,14 +585,13 @@ def close_way(world: World, me: SimPlayer, x: float, y: float, last: float | Non
     in his way. With 3 m of room asked, the dribble got into their third less often against HELIOS
     base. A new way every cycle, each needing a turn, kicked the ball on the spot for ever (session 61).
     """
-    prm = world.params
     straight = direction_deg(me.x, me.y, x, y)
     opponents = [(p.x + p.vx, p.y + p.vy) for p in world.players.values() if p.side is not me.side]
 
     def room(way: float) -> float:
         px = me.x + CLOSE_LOOK * math.cos(math.radians(way))
         py = me.y + CLOSE_LOOK * math.sin(math.radians(way))
-        if abs(px) > prm.field_length / 2 or abs(py) > prm.field_width / 2:
+        if _off_field(world, px, py):
             return -1.0
         return min((distance(px, py, ox, oy) for ox, oy in opponents), default=math.inf)
 
@@ -596,12 +606,6 @@ def _kept(x: float, y: float, body: float, bx: float, by: float) -> bool:
     gap = distance(x, y, bx, by)
     in_front = abs(norm_deg(direction_deg(x, y, bx, by) - body)) <= BEHIND
     return CLOSE_GAP <= gap <= CLOSE_REACH and in_front
-
-
-def _scaled(x: float, y: float, length: float) -> tuple[float, float]:
-    """(x, y) cut to ``length``."""
-    size = math.hypot(x, y)
-    return x * length / size, y * length / size
 
 
 def dribble_way(
@@ -637,7 +641,7 @@ def _dribble_margin(world: World, me: SimPlayer, velocity: tuple[float, float]) 
     for _ in range(DODGE_LOOK):
         bx, by, vx, vy = bx + vx, by + vy, vx * prm.ball_decay, vy * prm.ball_decay
         path.append((bx, by))
-    if any(abs(px) > prm.field_length / 2 or abs(py) > prm.field_width / 2 for px, py in path):
+    if any(_off_field(world, px, py) for px, py in path):
         return None
     opponents = [p for p in world.players.values() if p.side is not me.side]
     theirs = min((_their_cycles(o, path) for o in opponents), default=DODGE_LOOK + 2)

@@ -89,6 +89,11 @@ class Params:
     audio_cut_dist: float = 50.0  # m: a say is heard this far off at most
 
     @property
+    def dash_accel(self) -> float:
+        """Metres per cycle a full dash adds to a rested player's speed (before the speed cap)."""
+        return MAX_DASH_POWER * self.dash_power_rate * self.effort_max
+
+    @property
     def top_speed(self) -> float:
         """Metres per cycle that repeated full dashes reach (1.0 for rcssserver's default type)."""
         return top_speed(self.player_speed_max, self.dash_power_rate, self.player_decay, self.effort_max)
