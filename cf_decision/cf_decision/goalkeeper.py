@@ -9,11 +9,19 @@ from cf_lang.ontology import actions as act
 
 from . import reach
 from .set_piece import OUR_SET_PIECES
-from .situation import KICKABLE, OWN_GOAL, Decision, dist, nearest_of_each_side, opponent_on_ball, play_mode, point
+from .situation import (
+    KICKABLE,
+    OWN_GOAL,
+    Decision,
+    dist,
+    guard_spot,
+    nearest_of_each_side,
+    opponent_on_ball,
+    play_mode,
+    point,
+)
 from .with_ball import best_clearance, in_our_box, set_piece_kick
 
-KEEPER_OUT_SHARE = 0.25  # the goalkeeper stands this share of the ball's distance out of his goal,
-KEEPER_OUT_MAX = 6.0  # m: at most this far
 KEEPER_SLACK = 0.7  # m from his guard spot within which he stays (the moveTo skill's own tolerance)
 RUSH_DISTANCE = 14.0  # m from our goal: an opponent with the ball this close is closed down by the keeper
 CATCH_REACH = 1.2  # m: rcssserver's catchable_area_l
@@ -79,24 +87,6 @@ def into_our_goal(path: list[tuple[float, float]], margin: float = 0.0) -> int |
     if n is None or abs(path[n][1] - OWN_GOAL[1]) > FIELD.goal_width / 2 + margin:
         return None
     return n
-
-
-def guard_spot(ball: tuple[float, float]) -> tuple[float, float]:
-    """Where the goalkeeper guards the goal: on the line that halves the angle the ball sees the
-    goal mouth under, further out the further the ball (at the line a shot from 10 m passes him out
-    of reach on either side).
-
-    On the line to the goal's centre, with the ball by the goal line 16 m out he stood 1.2 m off a
-    shot at the near post and 0.5 m off one at the far post: from that spot 27 of 86 of HELIOS
-    base's goals were his to reach, from this one 50 (tools/rcss_keeper.py, session 53).
-    """
-    post, other = (OWN_GOAL[0], FIELD.goal_width / 2), (OWN_GOAL[0], -FIELD.goal_width / 2)
-    # The halving line meets the goal line where it splits the mouth as the ball's distances to the posts.
-    share = dist(ball, post) / (dist(ball, post) + dist(ball, other))
-    aim = (OWN_GOAL[0], post[1] + (other[1] - post[1]) * share)
-    out = max(2.0, min(KEEPER_OUT_MAX, KEEPER_OUT_SHARE * dist(ball, aim)))
-    angle = math.atan2(ball[1] - aim[1], ball[0] - aim[0])
-    return (aim[0] + out * math.cos(angle), aim[1] + out * math.sin(angle))
 
 
 def catch(state: WorldState, me: tuple[float, float], ball: tuple[float, float]) -> Decision:

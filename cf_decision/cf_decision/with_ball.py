@@ -11,12 +11,14 @@ from cf_lang.ontology import FIELD, Ball, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
 from . import reach
+from .reach import Runner
 from .set_piece import OUR_SET_PIECES
 from .situation import (
     FIELD_HALF_LENGTH,
     GOAL,
     Decision,
     dist,
+    guard_spot,
     offside_line,
     offside_mates,
     onside,
@@ -135,6 +137,12 @@ def shot_margin(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[flo
     """
     _, opponents = sides(state)
     keepers = [o for o in opponents if o.goalie]
+    if not keepers:
+        # Their goalkeeper is out of sight more often than not (behind the head's sweep): a shot
+        # judged free of him went straight into his hands from 30 m against HELIOS base. Unseen, he
+        # is where a goalkeeper guards his goal.
+        keepers = [Runner(their_guard_spot(ball), True)]
+        opponents = [*opponents, *keepers]
     best, best_key, best_margin = (FIELD_HALF_LENGTH + 1.0, 0.0), (-1, 0, 0.0), -reach.HORIZON
     half_goal = FIELD.goal_width / 2 - 0.8
     for y in (-half_goal, -half_goal / 2, 0.0, half_goal / 2, half_goal):
@@ -152,6 +160,12 @@ def shot_margin(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[flo
         if key > best_key:
             best, best_key, best_margin = target, key, margin
     return best, best_margin
+
+
+def their_guard_spot(ball: tuple[float, float]) -> tuple[float, float]:
+    """Where their goalkeeper guards against a ball at ``ball``: as ours does (:func:`guard_spot`), mirrored."""
+    x, y = guard_spot((-ball[0], ball[1]))
+    return -x, y
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@ from cf_decision.with_ball import (
     best_shot,
     free_ways,
     roomiest,
+    their_guard_spot,
 )
 from cf_decision.without_ball import NEVER, choose_interceptor, marking
 from cf_lang.ontology import AbsolutePositioning, Ball, Game, Player, PlayMode, Team, Velocity, WorldState
@@ -99,6 +100,17 @@ def test_shoot_when_the_ball_beats_the_keeper():
     assert best_shot(state((0.0, 0.0), players=[keeper]), (10.0, 0.0)) is None  # out of range
     wall = [keeper] + [opp(n, 47.0, y) for n, y in zip(range(2, 9), (-6, -4, -2, 0, 2, 4, 6), strict=True)]
     assert best_shot(state((40.0, 0.0), players=wall), (40.5, 0.0)) is None  # every line blocked
+
+
+def test_an_unseen_goalkeeper_counts_as_standing_at_his_guard_spot():
+    # Their keeper out of sight: from 28 m no line beats him where he would stand; seen far off, free.
+    far = (27.5, 12.0)
+    assert best_shot(state((27.0, 12.0)), far) is None
+    assert best_shot(state((27.0, 12.0), players=[opp(1, 52.0, -20.0, goalie=True)]), far) is not None
+    assert best_shot(state((41.5, 0.0)), (42.0, 0.0)) is not None  # 10 m out in the middle: past him
+    assert best_shot(state((40.0, 6.0)), (40.5, 6.0)) is None  # 12 m out to one side: not
+    spot = their_guard_spot((40.5, 6.0))
+    assert 2.0 <= 52.5 - spot[0] <= 6.0 and 0.0 < spot[1] < 6.0  # out of his goal, on the ball's side
 
 
 def test_pass_forward_to_a_team_mate_who_gets_there_first():
