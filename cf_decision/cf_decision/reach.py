@@ -3,7 +3,7 @@
 The ball keeps BALL_DECAY of its speed every cycle; a player needs TURN_CYCLES to face it, then
 runs up to his top speed a cycle (PLAYER_SPEED unless the WorldState tells his, START_LOSS metres
 behind that pace from a standstill at PLAYER_SPEED), and has the ball once within REACH of it (a
-goalkeeper catches within CATCH_REACH). Both back-ends follow rcssserver's physics, so one model
+goalkeeper catches within CATCH_REACH), plus how far he may be from where he is believed to be. Both back-ends follow rcssserver's physics, so one model
 serves both. Positions are in the player's own frame, speeds in metres per cycle.
 """
 
@@ -33,6 +33,7 @@ class Runner(NamedTuple):
     pos: Point
     goalie: bool = False
     speed: float = PLAYER_SPEED
+    unsure: float = 0.0  # m: how far off ``pos`` he may be (believed, not seen): added to his reach
 
 
 def top_speed(player: Player | None) -> float:
@@ -111,8 +112,8 @@ def cycles_to_ball(me: Point, ball: Point, velocity: Point = (0.0, 0.0), speed: 
 def first_cycles(path: list[Point], players: list[Runner], react: int = TURN_CYCLES) -> int | None:
     """The earliest cycle any of ``players`` has a ball on ``path``, each setting off after ``react`` cycles."""
     best = None
-    for pos, goalie, speed in players:
-        n = cycles_to_path(pos, path, CATCH_REACH if goalie else REACH, react, speed)
+    for pos, goalie, speed, unsure in players:
+        n = cycles_to_path(pos, path, (CATCH_REACH if goalie else REACH) + unsure, react, speed)
         if n is not None and (best is None or n < best):
             best = n
     return best

@@ -249,7 +249,7 @@ def space_ahead(
 ) -> bool:
     """No opponent within ``near``, nor within ``ahead`` and ``cone`` degrees of the way towards ``towards``."""
     heading = math.atan2(towards[1] - me[1], towards[0] - me[0])
-    for pos, _, _ in sides(state)[1]:
+    for pos, *_ in sides(state)[1]:
         d = dist(me, pos)
         off = abs(math.remainder(math.atan2(pos[1] - me[1], pos[0] - me[0]) - heading, math.tau))
         if d < near or (d < ahead and off < math.radians(cone)):

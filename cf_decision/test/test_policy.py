@@ -11,7 +11,7 @@ from cf_decision.policy import LINE_AHEAD_MAX, decide
 from cf_decision.reach import Runner, ball_path, cycles_to_ball, cycles_to_path, first_cycles, kicked_path, pass_speed
 from cf_decision.roles import KICK_OFF_WING, Role, back_line, home_position, kick_off_position, role_of
 from cf_decision.set_piece import SetPieceTaker
-from cf_decision.situation import offside_line, their_ball
+from cf_decision.situation import offside_line, their_ball, unsure
 from cf_decision.with_ball import (
     CLEAR_SPEED,
     WAY_OFF_UP_FIELD,
@@ -111,6 +111,18 @@ def test_an_unseen_goalkeeper_counts_as_standing_at_his_guard_spot():
     assert best_shot(state((40.0, 6.0)), (40.5, 6.0)) is None  # 12 m out to one side: not
     spot = their_guard_spot((40.5, 6.0))
     assert 2.0 <= 52.5 - spot[0] <= 6.0 and 0.0 < spot[1] < 6.0  # out of his goal, on the ball's side
+
+
+def test_an_opponent_not_seen_lately_may_be_nearer_the_pass_than_believed():
+    # 5 m off the pass's way: seen just now he cannot get there first; 6 cycles unseen (2.4 m of
+    # doubt) he may: no longer a safe pass. Far off its way, his doubt does not matter.
+    def chosen(y, age):
+        man = Player(player_number=9, which_team=Team.OPP, positioning=at(-12.0, y), age=age)
+        return best_pass(state((-20.0, 0.0), players=[mate(6, -5.0, 0.0), man]), (-19.5, 0.0))
+
+    assert chosen(5.0, 0) is not None and chosen(5.0, 6) is None
+    assert chosen(7.0, 6) is not None and chosen(7.0, 60) is not None  # (the doubt stops at 3 m)
+    assert unsure(Player(player_number=9, which_team=Team.OPP, age=2)) == 0.8
 
 
 def test_pass_forward_to_a_team_mate_who_gets_there_first():
