@@ -3,8 +3,9 @@
 The ball keeps BALL_DECAY of its speed every cycle; a player needs TURN_CYCLES to face it, then
 runs up to his top speed a cycle (PLAYER_SPEED unless the WorldState tells his, START_LOSS metres
 behind that pace from a standstill at PLAYER_SPEED), and has the ball once within REACH of it (a
-goalkeeper catches within CATCH_REACH), plus how far he may be from where he is believed to be. Both back-ends follow rcssserver's physics, so one model
-serves both. Positions are in the player's own frame, speeds in metres per cycle.
+goalkeeper catches within CATCH_REACH), plus how far he may be from where he is believed to be
+(``Runner.unsure``). Both back-ends follow rcssserver's physics, so one model serves both.
+Positions are in the player's own frame, speeds in metres per cycle.
 """
 
 from __future__ import annotations
