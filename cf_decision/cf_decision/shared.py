@@ -17,11 +17,10 @@ from collections.abc import Iterable
 from cf_lang.ontology import Player, Team, WorldState
 
 from .set_piece import OUR_SET_PIECES
-from .situation import dist, play_mode, xy
+from .situation import UNSEEN_DRIFT, dist, play_mode, xy
 
 TELL_SIGMA = 2.0  # m: an opponent seen this cycle is told when his position is this sure
 HEARD_AGE = 2  # cycles (of game time, and of the hearer's perceptions): what a team-mate told is used this long
-SIGMA_GROWTH = 0.4  # m per cycle: how a told position's uncertainty grows (the rcss belief's, for unseen men)
 SAME_MAN = 2.0  # m: a player without a number this near a told one (plus the growth) is him
 MOST_TOLD = 22  # players read from one word (a word with more is cut: what is kept stays bounded)
 # A word goes to the team-mates who claim the ball within this many cycles: the ones who choose a
@@ -80,7 +79,7 @@ def merged(state: WorldState, heard: Iterable[WorldState]) -> tuple[WorldState, 
     """My picture with team-mates' words merged in, and how many players it took from them.
 
     A told player (a team-mate where he said he was, an opponent a team-mate saw) replaces mine of
-    the same team and number when his position is surer: its sigma, grown SIGMA_GROWTH a cycle since
+    the same team and number when his position is surer: its sigma, grown UNSEEN_DRIFT a cycle since
     it was told, is smaller than mine; without sigmas, when it is fresher. One I did not have is
     added, and a player without a number believed within SAME_MAN of him is taken to be him (the
     rcss belief keeps a man seen too far to read his number as such). Words older than HEARD_AGE
@@ -104,7 +103,7 @@ def merged(state: WorldState, heard: Iterable[WorldState]) -> tuple[WorldState, 
             key = (told.which_team, told.player_number)
             if key == (Team.OUR, mine):
                 continue
-            sigma = None if told.positioning.sigma_x is None else told.positioning.sigma_x + SIGMA_GROWTH * late
+            sigma = None if told.positioning.sigma_x is None else told.positioning.sigma_x + UNSEEN_DRIFT * late
             age = (told.age or 0) + late
             same = index.get(key)
             if same is not None and not _surer(sigma, age, players[same]):
@@ -125,7 +124,7 @@ def merged(state: WorldState, heard: Iterable[WorldState]) -> tuple[WorldState, 
                     update={"top_speed": keep.top_speed or now.top_speed, "is_goalie": keep.is_goalie or now.is_goalie}
                 )
             else:
-                gate = SAME_MAN + SIGMA_GROWTH * late
+                gate = SAME_MAN + UNSEEN_DRIFT * late
                 players = [p for p in players if not _unnamed_near(p, now, gate)]
                 players.append(now)
                 index = {

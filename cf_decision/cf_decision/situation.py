@@ -19,7 +19,9 @@ OWN_GOAL = (-FIELD_HALF_LENGTH, 0.0)
 KICKABLE = 1.005  # m: a ball rcssserver's see shows at 1.0 m is surely kickable (the back-ends' skills kick it)
 KEEPER_OUT_SHARE = 0.25  # a goalkeeper stands this share of the ball's distance out of his goal,
 KEEPER_OUT_MAX = 6.0  # m: at most this far
-UNSEEN_DRIFT = 0.4  # m a cycle: an opponent not seen may have moved this far from where he was (rcss belief's growth)
+# m a cycle: an opponent not seen may have moved this far from where he was (the rcss belief's doubt
+# growth for unseen men); a position a team-mate told grows as unsure (shared.py)
+UNSEEN_DRIFT = 0.4
 UNSURE_MAX = 3.0  # m: ... up to this: the reach the reach model adds for it
 ONSIDE_SLACK = 0.5  # m: a team-mate this little beyond their line at the kick counts as onside (belief noise)
 

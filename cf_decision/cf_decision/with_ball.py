@@ -11,7 +11,6 @@ from cf_lang.ontology import FIELD, Ball, Player, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
 from . import reach
-from .reach import Runner
 from .set_piece import OUR_SET_PIECES
 from .situation import (
     FIELD_HALF_LENGTH,
@@ -141,7 +140,7 @@ def shot_margin(state: WorldState, ball: tuple[float, float]) -> tuple[tuple[flo
         # Their goalkeeper is out of sight more often than not (behind the head's sweep): a shot
         # judged free of him went straight into his hands from 30 m against HELIOS base. Unseen, he
         # is where a goalkeeper guards his goal.
-        keepers = [Runner(their_guard_spot(ball), True)]
+        keepers = [reach.Runner(their_guard_spot(ball), True)]
         opponents = [*opponents, *keepers]
     best, best_key, best_margin = (FIELD_HALF_LENGTH + 1.0, 0.0), (-1, 0, 0.0), -reach.HORIZON
     half_goal = FIELD.goal_width / 2 - 0.8
