@@ -13,6 +13,7 @@ OUR_SET_PIECES = frozenset(
         PlayMode.CORNER_KICK_OUR,
         PlayMode.GOAL_KICK_OUR,
         PlayMode.FREE_KICK_OUR,
+        PlayMode.INDIRECT_FREE_KICK_OUR,
     }
 )
 KICKING = frozenset({"shoot", "pass", "dribble", "holdBall", "kick"})  # (a hold-ball touch is a kick)

@@ -80,19 +80,27 @@ def win_the_ball(state: WorldState, ball: tuple[float, float], why: str) -> Deci
 
 
 def set_piece_kick(state: WorldState, me: tuple[float, float]) -> Decision:
-    """Our set piece: one touch only, so shoot, pass (backwards if need be), or kick long into their half."""
+    """Our set piece: one touch only, so shoot (not at an indirect free kick), pass (backwards if need
+    be), or kick long into their half."""
     ball = xy(state.ball.positioning) if state.ball and state.ball.positioning else me
     if unseen_near(state, ball):
         # A set piece leaves time to look: against a real team most of the men near the ball were
         # not believed within 3 m of where they stood when the taker chose, and every pass that
         # went to an opponent went to one of those (docs/performance.md, session 17).
         return Decision("turnToObject", act.TurnToObject(obj=Ball()), "set piece: look first")
-    if dist(ball, GOAL) <= SHOOT_RANGE:
+    indirect = play_mode(state) is PlayMode.INDIRECT_FREE_KICK_OUR
+    if dist(ball, GOAL) <= SHOOT_RANGE and not indirect:
         target, _ = shot_margin(state, ball)  # the corner the keeper is furthest from
         return Decision("shoot", act.Shoot(target=point(*target), power=100.0), "set piece near goal")
     choice = best_pass(state, ball)
     if choice is not None:
         return pass_to(choice, "set piece")
+    mates = sides(state)[0]
+    if indirect and mates:
+        # A shot from an indirect free kick cannot score: against HELIOS base one from 10.8 m, the
+        # defenders on their goal line, went wide for their goal kick. A team-mate's touch first.
+        number, runner = min(mates, key=lambda mate: dist(mate[1].pos, ball))
+        return pass_to(PassChoice(number, None, runner.pos[0] - ball[0], runner.pos), "indirect free kick")
     target = point(min(FIELD_HALF_LENGTH - 10.0, me[0] + 35.0), me[1] * 0.5)
     return Decision("pass", act.Pass(target=target, power=100.0), "set piece: kick long")
 

@@ -426,6 +426,19 @@ def test_near_their_goal_with_nothing_better_shoot_away_from_the_keeper():
     assert corner.method == "shoot" and corner.action.target.y > 0.0  # a set piece's shot: away from him too
 
 
+def test_at_an_indirect_free_kick_near_their_goal_a_team_mate_touches_it_before_any_shot():
+    # HELIOS base's back pass (session 63): our free kick 10.8 m out, their men on the goal line.
+    line = [opp(1, 52.1, 0.0, goalie=True), *(opp(n, 52.3, y) for n, y in ((2, 5.3), (3, 2.7), (4, -3.3)))]
+    marked = [mate(11, 41.0, 2.0), opp(6, 40.0, 3.0), opp(7, 41.5, 3.5)]  # his one team-mate near is marked
+    for mode in (PlayMode.FREE_KICK_OUR, PlayMode.INDIRECT_FREE_KICK_OUR):
+        st = state((45.0, 8.5), ball=(45.4, 8.2), players=[*line, *marked], mode=mode, number=10)
+        d = decide(st, 10, 11, {})
+        if mode is PlayMode.FREE_KICK_OUR:
+            assert d.method == "shoot" and d.why == "set piece near goal"
+        else:  # no goal can come of a shot: the nearest team-mate gets it, safe or not
+            assert d.method == "pass" and d.action.to.player_number == 11 and "indirect" in d.why, d
+
+
 def test_in_our_half_the_second_fastest_covers_the_way_from_an_opponents_ball_to_our_goal():
     players = [opp(9, -20.5, 0.0)]
     cover = decide(state((-15.0, 5.0), ball=(-20.0, 0.0), players=players), 6, 11, {4: 3, 6: 7, 8: 12})

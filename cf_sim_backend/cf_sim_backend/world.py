@@ -85,6 +85,7 @@ class Params:
     goal_pause_cycles: int = 20
     auto_kick_off_cycles: int = 50
     set_piece_timeout: int = 100
+    back_passes: bool = True  # the goalkeeper may not catch a team-mate's kick (rcssserver's back_passes)
     say_msg_size: int = 10  # characters a say may carry (rcssserver's say_msg_size)
     audio_cut_dist: float = 50.0  # m: a say is heard this far off at most
 
@@ -179,6 +180,8 @@ class World:
     types: tuple[Params, ...] = ()  # the heterogeneous types' parameters by id (none: all of ``params``)
     types_seed: int = 0  # the seed they were drawn with (player_types.hetero_types)
     said: tuple[tuple[Side, int, str], ...] = ()  # the says of the cycle just played: heard in this one
+    indirect: bool = False  # an indirect free kick's ball: no goal until a second player has touched it
+    indirect_kicker: tuple[Side, int] | None = None  # the first player to touch it since
 
     def player(self, side: Side, number: int) -> SimPlayer:
         return self.players[(side, number)]

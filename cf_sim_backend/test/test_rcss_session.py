@@ -84,8 +84,9 @@ def test_belief_follows_play_modes_and_the_score():
         ("goal_l_3", "goal_l"),
         ("kick_in_r", "kick_in_r"),
         ("free_kick_fault_l", "free_kick_r"),
-        ("back_pass_r", "free_kick_l"),
-        ("indirect_free_kick_l", "free_kick_l"),
+        ("back_pass_r", "indirect_free_kick_l"),
+        ("indirect_free_kick_l", "indirect_free_kick_l"),
+        ("foul_charge_l", "free_kick_r"),  # (indirect in the penalty area: the server says so next)
         ("time_up", "time_over"),
         ("play_on", "play_on"),
     ],

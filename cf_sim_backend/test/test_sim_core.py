@@ -223,6 +223,50 @@ def test_offside():
     assert "offside l 9" in events and w.mode == "free_kick_r"
 
 
+def test_a_back_pass_caught_is_an_indirect_free_kick_that_scores_only_after_a_second_touch():
+    # Right 4 passes back to his goalkeeper, who catches it in his goal area: as in rcssserver, an
+    # indirect free kick to the left side, on the goal area's front line.
+    sim = sim_with(
+        (Side.RIGHT, 1, 49.0, 0.0, 180.0),
+        (Side.RIGHT, 4, 40.0, 0.0, 0.0),
+        (Side.LEFT, 9, 30.0, 0.0, 0.0),
+        (Side.LEFT, 10, 30.0, 10.0, 0.0),
+    )
+    w = sim.world
+    w.ball.x, w.ball.y = 40.6, 0.0
+    sim.command(Side.RIGHT, 4, "kick", 40, 0)
+    events = sim.step()
+    for _ in range(20):
+        if w.mode != "play_on":
+            break
+        sim.command(Side.RIGHT, 1, "catch", 0)
+        events += sim.step()
+    assert "back pass r 4" in events and w.mode == "indirect_free_kick_l", events
+    assert (w.ball.x, w.ball.y) == (pytest.approx(47.0), pytest.approx(0.0))
+    assert observe(w, Side.LEFT, 9, random.Random(1)).game.play_mode is PlayMode.INDIRECT_FREE_KICK_OUR
+    keeper = w.player(Side.RIGHT, 1)
+    assert (keeper.x, keeper.y) == (pytest.approx(52.5), pytest.approx(0.0))  # kept off, but on his goal line
+
+    def shoot(number: int, at_y: float) -> list[str]:
+        p, b = w.player(Side.LEFT, number), w.ball
+        p.x, p.y, p.body = b.x - 0.6, b.y, 0.0
+        sim.command(Side.LEFT, number, "kick", 100, math.degrees(math.atan2(at_y - b.y, 52.5 - b.x)))
+        return [e for _ in range(10) for e in sim.step()]
+
+    # Straight in from the free kick: no goal, a goal kick (the attackers put it over the line).
+    events = shoot(9, 4.0)
+    assert w.score[Side.LEFT] == 0 and w.mode == "goal_kick_r", events
+    # Touched by a second player first, it scores.
+    referee.start_set_piece(w, "indirect_free_kick", Side.LEFT, 47.0, -5.0)
+    w.ball.x, w.ball.y = 47.0, -5.0
+    w.player(Side.LEFT, 9).x, w.player(Side.LEFT, 9).y, w.player(Side.LEFT, 9).body = 46.4, -5.0, 90.0
+    sim.command(Side.LEFT, 9, "kick", 20, 0)  # a short touch across to his team-mate
+    sim.step()
+    w.ball.vx = w.ball.vy = 0.0
+    events = shoot(10, -3.0)
+    assert "goal l" in events and w.score[Side.LEFT] == 1, events
+
+
 def test_a_stoppage_ends_the_offsides_of_the_last_kick_and_a_kick_in_makes_none():
     # Left 10 shoots over their goal line with left 9 beyond their last defender: the goal kick that
     # follows ends it, so left 9 may take our next set piece (he was called offside at it before).

@@ -50,6 +50,10 @@ class PlayMode(StrEnum):
     GOAL_KICK_OPP = "goal_kick_opp"
     FREE_KICK_OUR = "free_kick_our"
     FREE_KICK_OPP = "free_kick_opp"
+    # A goal needs a second player's touch; the defenders may stand on their goal line (rcssserver:
+    # after a back pass their goalkeeper caught, or a foul in the penalty area).
+    INDIRECT_FREE_KICK_OUR = "indirect_free_kick_our"
+    INDIRECT_FREE_KICK_OPP = "indirect_free_kick_opp"
     OFFSIDE_OUR = "offside_our"
     OFFSIDE_OPP = "offside_opp"
     GOAL_OUR = "goal_our"

@@ -3,17 +3,21 @@
 Play modes use rcssserver's names with the side that has the ball:
 before_kick_off, kick_off_l/r, play_on, kick_in_l/r, corner_kick_l/r,
 goal_kick_l/r, free_kick_l/r (after offside or a goalkeeper's catch),
-goal_l/r (the side that scored), half_time, time_over. In a set piece the ball
-lies still until the side that has it kicks; opponents are kept 9.15 m away.
+indirect_free_kick_l/r (after a back pass the goalkeeper caught), goal_l/r (the
+side that scored), half_time, time_over. In a set piece the ball lies still
+until the side that has it kicks; opponents are kept 9.15 m away (at an indirect
+free kick they may stand on their goal line), and a ball kicked from an indirect
+free kick scores only after a second player has touched it.
 """
 
 from __future__ import annotations
 
 import math
 
+from cf_lang.ontology import FIELD
 from cf_sim_backend.world import Side, World, kick_off_position
 
-SET_PIECES = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick")
+SET_PIECES = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick", "indirect_free_kick")
 
 
 def set_mode(world: World, mode: str) -> None:
@@ -39,13 +43,23 @@ def place_for_kick_off(world: World, side: Side) -> None:
         p.neck = 0.0
     world.kick_off_side = side
     world.last_touch = None
+    world.indirect, world.indirect_kicker = False, None
 
 
 def start_set_piece(world: World, piece: str, side: Side, x: float, y: float) -> None:
     b = world.ball
     b.x, b.y, b.vx, b.vy = x, y, 0.0, 0.0
     world.last_touch = None
+    world.indirect, world.indirect_kicker = piece == "indirect_free_kick", None
     set_mode(world, f"{piece}_{side.value}")
+
+
+def out_of_goal_area(world: World, x: float, y: float) -> tuple[float, float]:
+    """A free kick's spot: a ball within a goal area is put on its front line (rcssserver's moveOutOfGoalArea)."""
+    edge = world.params.field_length / 2 - FIELD.goal_area_length
+    if abs(x) > edge and abs(y) <= FIELD.goal_area_width / 2:
+        x = math.copysign(edge, x)
+    return x, y
 
 
 def keep_opponents_away(world: World) -> None:
@@ -54,15 +68,18 @@ def keep_opponents_away(world: World) -> None:
         return
     b = world.ball
     radius = world.params.kick_off_clearance
+    goal_line = world.params.field_length / 2
     for p in world.players.values():
-        if p.side is side:
-            continue
+        if p.side is side or (world.indirect and abs(p.x) >= goal_line):
+            continue  # (at an indirect free kick a defender may stand on his goal line, as in rcssserver)
         dx, dy = p.x - b.x, p.y - b.y
         d = (dx * dx + dy * dy) ** 0.5
         if d < radius:
             if d < 1e-6:
                 dx, dy, d = -side.sign, 0.0, 1.0
             p.x, p.y = b.x + dx / d * radius, b.y + dy / d * radius
+            if world.indirect and abs(p.x) > goal_line:  # pushed behind it: onto it, on the same ray
+                p.x, p.y = math.copysign(goal_line, p.x), b.y + dy / dx * (math.copysign(goal_line, p.x) - b.x)
 
 
 def offside_players(world: World, kicker_side: Side, kicker_number: int) -> set[int]:
@@ -112,7 +129,7 @@ def check_ball(world: World) -> str | None:
     if abs(b.x) > half_length:
         goal_side = Side.RIGHT if b.x > 0 else Side.LEFT  # whose goal line it crossed
         attacker = goal_side.other
-        if abs(b.y) < prm.goal_width / 2:
+        if abs(b.y) < prm.goal_width / 2 and not world.indirect:
             world.score[attacker] += 1
             set_mode(world, f"goal_{attacker.value}")
             b.vx = b.vy = 0.0

@@ -202,7 +202,14 @@ class Simulator:
             return self._touch(p, name, args)
         elif name == "catch" and w.mode == "play_on" and physics.catch(w, p, args[0]):
             p.counts[_CATCH] += 1
-            w.last_touch = p.key
+            passer, w.last_touch = w.last_touch, p.key
+            if w.params.back_passes and passer is not None and passer[0] is p.side and passer != p.key:
+                # As rcssserver's CatchRef: a team-mate's kick caught is a back pass, an indirect
+                # free kick to the other side where it was caught (out of the goal area).
+                referee.start_set_piece(
+                    w, "indirect_free_kick", p.side.other, *referee.out_of_goal_area(w, w.ball.x, w.ball.y)
+                )
+                return f"back pass {p.side.value} {passer[1]}"
             referee.start_set_piece(w, "free_kick", p.side, w.ball.x, w.ball.y)
             return f"catch {p.side.value} {p.number}"
         return None
@@ -230,6 +237,9 @@ class Simulator:
         if not touched:
             return None
         w.last_touch = p.key
+        if w.indirect:  # the indirect free kick's ball may score once a second player has touched it
+            w.indirect_kicker = w.indirect_kicker or p.key
+            w.indirect = w.indirect_kicker == p.key
         self._taker = None
         self.stats["kicks"][p.side] += 1
         shot = referee.is_shot(w, p.side)

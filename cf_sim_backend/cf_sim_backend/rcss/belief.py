@@ -70,8 +70,9 @@ _FOUL = (
     "illegal_defense",
     "foul",
 )
-_FOR_SIDE = ("indirect_free_kick", "goalie_catch_ball", "penalty_setup", "penalty_ready", "penalty_taken")
-_SIDED = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick", "offside", "goal")
+_INDIRECT_AFTER = ("back_pass",)  # fouls whose free kick is always an indirect one (rcssserver's CatchRef)
+_FOR_SIDE = ("goalie_catch_ball", "penalty_setup", "penalty_ready", "penalty_taken")
+_SIDED = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick", "indirect_free_kick", "offside", "goal")
 # The embedded simulator's play modes (absolute): what the rest of the adapter understands.
 SIM_MODES = frozenset(
     ["before_kick_off", "play_on", "drop_ball", "half_time", "time_over"]
@@ -88,7 +89,8 @@ def sim_mode(mode: str) -> str | None:
     base, _, who = mode.rpartition("_")
     if who in ("l", "r"):
         if base in _FOUL:
-            return f"free_kick_{'r' if who == 'l' else 'l'}"
+            kind = "indirect_free_kick" if base in _INDIRECT_AFTER else "free_kick"
+            return f"{kind}_{'r' if who == 'l' else 'l'}"
         if base in _FOR_SIDE:
             return f"free_kick_{who}"
         if base.startswith("penalty"):
