@@ -86,6 +86,7 @@ class Params:
     auto_kick_off_cycles: int = 50
     set_piece_timeout: int = 100
     back_passes: bool = True  # the goalkeeper may not catch a team-mate's kick (rcssserver's back_passes)
+    foul_detect_probability: float = 0.5  # the referee sees a tackle through a man this often (rcssserver's)
     say_msg_size: int = 10  # characters a say may carry (rcssserver's say_msg_size)
     audio_cut_dist: float = 50.0  # m: a say is heard this far off at most
 
@@ -151,6 +152,9 @@ class SimPlayer:
     ptype: int = 0  # heterogeneous player type (World.types)
     kicks: int = 0  # kicks that reached the ball
     frozen: int = 0  # cycles left in which a tackle keeps the player from any body command
+    dashed_at: int = (
+        -10
+    )  # the cycle of his last dash (rcssserver calls a tackle through a man who dashed lately a foul)
     # The commands the simulator carried out, counted as rcssserver counts them (by COUNTED): a kick
     # once it reached the ball, a tackle whether it hit or not.
     counts: list[int] = field(default_factory=lambda: [0] * len(COUNTED))

@@ -267,6 +267,30 @@ def test_a_back_pass_caught_is_an_indirect_free_kick_that_scores_only_after_a_se
     assert "goal l" in events and w.score[Side.LEFT] == 1, events
 
 
+def test_a_tackle_through_a_man_who_has_the_ball_is_a_foul_as_rcssserver_calls_it():
+    # Left 4 tackles right 9 from behind: 9 stands between him and the ball at his own feet, faces
+    # the ball's way and dashed just now. The referee (made sure here) calls a foul: the other
+    # side's free kick where the tackler stood, an indirect one in the tackler's penalty area.
+    sure = replace(QUIET, foul_detect_probability=1.0)
+
+    def tackle(x: float, body: float = 180.0, dashed: bool = True) -> Simulator:
+        sim = sim_with((Side.LEFT, 4, x, 0.0, 180.0), (Side.RIGHT, 9, x - 0.9, 0.0, body), params=sure)
+        sim.world.ball.x, sim.world.ball.y = x - 1.5, 0.0
+        sim.world.player(Side.RIGHT, 9).dashed_at = sim.world.time if dashed else -10
+        sim.command(Side.LEFT, 4, "tackle", 0)
+        sim.events = sim.step()
+        return sim
+
+    in_area = tackle(-40.0)
+    assert "foul l 4" in in_area.events and in_area.world.mode == "indirect_free_kick_r"
+    assert in_area.world.ball.x == pytest.approx(-40.0, abs=0.5)  # (at the tackler's feet, off his body)
+    mid = tackle(-10.0)
+    assert "foul l 4" in mid.events and mid.world.mode == "free_kick_r"
+    assert mid.world.ball.x == pytest.approx(-10.0, abs=0.5)
+    for fair in (tackle(-10.0, body=0.0), tackle(-10.0, dashed=False)):  # facing me, or standing: no foul
+        assert fair.world.mode == "play_on" and not any(e.startswith("foul") for e in fair.events)
+
+
 def test_a_stoppage_ends_the_offsides_of_the_last_kick_and_a_kick_in_makes_none():
     # Left 10 shoots over their goal line with left 9 beyond their last defender: the goal kick that
     # follows ends it, so left 9 may take our next set piece (he was called offside at it before).

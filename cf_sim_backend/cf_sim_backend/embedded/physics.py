@@ -143,6 +143,31 @@ def tackle(world: World, p: SimPlayer, direction: float, rng: random.Random) -> 
     return True
 
 
+def foul_risk(world: World, tackler: SimPlayer, bodies_known: bool = True) -> list[SimPlayer]:
+    """The opponents a tackle by ``tackler`` now may foul (rcssserver's Referee::checkFoul, a foul not
+    meant): each has the ball in kicking reach and stands between the tackler and the ball (nearer
+    than it, ahead within the two bodies' width), facing within 90 degrees of the ball's way from
+    the tackler (``bodies_known`` False: however he faces, as a belief that does not know). The
+    referee also asks that he dashed lately, and sees each with ``foul_detect_probability``.
+    """
+    b = world.ball
+    ball_way = math.atan2(b.y - tackler.y, b.x - tackler.x)
+    ball_dist = math.hypot(b.x - tackler.x, b.y - tackler.y)
+    out = []
+    for p in world.players.values():
+        if p.side is tackler.side or math.hypot(p.x - b.x, p.y - b.y) > world.params_of(p).kickable_distance:
+            continue
+        dx, dy = p.x - tackler.x, p.y - tackler.y
+        ahead = dx * math.cos(ball_way) + dy * math.sin(ball_way)
+        aside = -dx * math.sin(ball_way) + dy * math.cos(ball_way)
+        if math.hypot(dx, dy) > ball_dist or ahead < 0.0 or abs(aside) > 2 * world.params.player_size:
+            continue
+        if bodies_known and abs(norm_deg(p.body - math.degrees(ball_way))) > 90.0:
+            continue
+        out.append(p)
+    return out
+
+
 def in_own_penalty_area(world: World, p: SimPlayer) -> bool:
     prm = world.params
     own_goal_x = -p.side.sign * prm.field_length / 2

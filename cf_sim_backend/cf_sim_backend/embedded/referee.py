@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 
 from cf_lang.ontology import FIELD
-from cf_sim_backend.world import Side, World, kick_off_position
+from cf_sim_backend.world import Side, SimPlayer, World, kick_off_position
 
 SET_PIECES = ("kick_off", "kick_in", "corner_kick", "goal_kick", "free_kick", "indirect_free_kick")
 
@@ -59,6 +59,19 @@ def out_of_goal_area(world: World, x: float, y: float) -> tuple[float, float]:
     edge = world.params.field_length / 2 - FIELD.goal_area_length
     if abs(x) > edge and abs(y) <= FIELD.goal_area_width / 2:
         x = math.copysign(edge, x)
+    return x, y
+
+
+def foul_spot(world: World, tackler: SimPlayer) -> tuple[float, float]:
+    """Where the free kick for a foul by ``tackler`` is taken (rcssserver's FoulRef::callFoul): where
+    he stood, out of either goal area and out of the penalty area he attacks."""
+    prm = world.params
+    half_length, half_width = prm.field_length / 2, prm.field_width / 2
+    x = max(-half_length, min(half_length, tackler.x))
+    x, y = out_of_goal_area(world, x, max(-half_width, min(half_width, tackler.y)))
+    box_edge = half_length - prm.penalty_area_length
+    if x * tackler.side.sign > box_edge and abs(y) <= prm.penalty_area_width / 2:
+        x = tackler.side.sign * box_edge
     return x, y
 
 

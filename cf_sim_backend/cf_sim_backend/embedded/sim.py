@@ -193,6 +193,7 @@ class Simulator:
         if name == "dash":
             physics.dash(w, p, *args)
             p.counts[_DASH] += 1
+            p.dashed_at = w.time
         elif name == "turn":
             physics.turn(w, p, args[0])
             p.counts[_TURN] += 1
@@ -231,6 +232,8 @@ class Simulator:
         if name == "kick":
             touched = physics.kick(w, p, *args, rng=self.rng)
             p.counts[_KICK] += touched
+        elif foul := self._foul(p):
+            return foul
         else:
             touched = physics.tackle(w, p, args[0], self.rng)
             p.counts[_TACKLE] += 1
@@ -253,6 +256,20 @@ class Simulator:
             referee.set_mode(w, "play_on")
             self._taker = (p.key, w.mode_since)
         return f"shot {p.side.value} {p.number}" if shot else None
+
+    def _foul(self, p: SimPlayer) -> str | None:
+        """rcssserver's foul charge: a tackle through an opponent who has the ball and dashed lately
+        (:func:`physics.foul_risk`), seen by the referee with ``foul_detect_probability``, is the
+        other side's free kick where the tackler stood, an indirect one in his own penalty area."""
+        w = self.world
+        fouled = [o for o in physics.foul_risk(w, p) if w.time - o.dashed_at <= 1]
+        if not any(self.rng.random() < w.params.foul_detect_probability for _ in fouled):
+            return None
+        p.frozen = w.params.tackle_cycles - 1
+        p.counts[_TACKLE] += 1
+        piece = "indirect_free_kick" if physics.in_own_penalty_area(w, p) else "free_kick"
+        referee.start_set_piece(w, piece, p.side.other, *referee.foul_spot(w, p))
+        return f"foul {p.side.value} {p.number}"
 
     def counts(self) -> dict[str, list[int]]:
         """Each player's counted commands (``"l9"``: rcssserver's counters, see ``SimPlayer.counts``)."""
