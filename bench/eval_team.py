@@ -177,7 +177,7 @@ def play(
         else None
     )
     log = MatchLog(match / "match.jsonl", sim, 0.1) if match else None
-    offsides = 0  # ours: a player of ours called offside
+    offsides = fouls = 0  # ours: a player of ours called offside; a tackle of ours called a foul
     while not sim.finished:
         ours.commands()
         if theirs:
@@ -186,6 +186,7 @@ def play(
             chase_commands(sim, Side.RIGHT)
         events = sim.step()
         offsides += sum(e.startswith(f"offside {Side.LEFT.value} ") for e in events)
+        fouls += sum(e.startswith(f"foul {Side.LEFT.value} ") for e in events)
         if log:
             log.cycle(sim.snapshot(), events)
     if log and match:
@@ -203,6 +204,7 @@ def play(
         "kicks": sim.stats["kicks"][Side.LEFT],
         "possession": sim.stats["possession"][Side.LEFT] / max(1, sum(sim.stats["possession"].values())),
         "offsides": offsides,
+        "fouls": fouls,
     }
 
 
@@ -229,13 +231,15 @@ def main() -> None:
     print(
         f"{args.players} v {args.players}, {2 * args.half_cycles} cycles a match{talk}, cf_decision (left) v {them}\n"
     )
-    print(f"| seed | cf_decision | {them} | result | our shots | our kicks | our possession | our offsides |")
-    print("|---:|---:|---:|---|---:|---:|---:|---:|")
+    print(
+        f"| seed | cf_decision | {them} | result | our shots | our kicks | our possession | our offsides | our fouls |"
+    )
+    print("|---:|---:|---:|---|---:|---:|---:|---:|---:|")
     for r in rows:
         result = "win" if r["ours"] > r["theirs"] else "draw" if r["ours"] == r["theirs"] else "loss"
         print(
             f"| {r['seed']} | {r['ours']} | {r['theirs']} | {result} | {r['shots']} | {r['kicks']} "
-            f"| {r['possession']:.0%} | {r['offsides']} |"
+            f"| {r['possession']:.0%} | {r['offsides']} | {r['fouls']} |"
         )
     wins = sum(r["ours"] > r["theirs"] for r in rows)
     draws = sum(r["ours"] == r["theirs"] for r in rows)
@@ -244,7 +248,7 @@ def main() -> None:
         f"\nwins {wins}, draws {draws}, losses {len(rows) - wins - draws}; goals "
         f"{sum(r['ours'] for r in rows)}:{sum(r['theirs'] for r in rows)} (difference {gd:+d}); "
         f"median goal difference per match {statistics.median(r['ours'] - r['theirs'] for r in rows):+.1f}; "
-        f"our offsides {sum(r['offsides'] for r in rows)}"
+        f"our offsides {sum(r['offsides'] for r in rows)}, fouls {sum(r['fouls'] for r in rows)}"
     )
 
 
