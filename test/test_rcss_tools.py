@@ -93,6 +93,12 @@ def test_read_rcg_gives_each_player_his_number_and_kicks(tmp_path):
     assert players == [("l", 9, 10.0, 0.0, 1), ("l", 10, 30.0, 0.0, 2), ("r", 3, 35.0, 0.0, 1)]
     stats = match_stats(tmp_path / "m.rcg", "l")
     assert stats["shots"] == [2, 0]  # CF 10 kicked twice 22.5 m from their goal
+    # Fouls and faults against each side: a tackle's foul and a back pass count, an offside not.
+    calls = ["foul_charge_l", "indirect_free_kick_r", "back_pass_r", "free_kick_fault_r", "offside_l", "foul_push_r"]
+    rcg = tmp_path / "m.rcg"
+    rcg.write_text(rcg.read_text() + "".join(f"(playmode {20 + i} {mode})\n" for i, mode in enumerate(calls)))
+    stats = match_stats(rcg, "l")
+    assert stats["faults"] == [1, 3] and stats["offsides"] == [1, 0]
 
 
 def test_every_kick_of_ours_is_put_down_to_its_reason_and_judged_by_the_next_kick(tmp_path):

@@ -14,8 +14,8 @@ nearest the ball), time in the other's third (the share of play-on cycles in whi
 ball, our kick its last, in their third : they in ours), tackles (hits of tries, each side), idle
 at the ball (of the play-on cycles in which a field player of ours had the ball within 0.9 m, the
 share in which he neither kicked nor tackled it; "held": such cycles in which his own tackle of
-the last 10 cycles held him, as rcssserver's tackle_cycles does), offsides and faults (free kick, catch, back
-pass) called against each side, the mean top speed of each side's field players (their
+the last 10 cycles held him, as rcssserver's tackle_cycles does), offsides and fouls and faults (a tackle's foul, a free kick
+fault, a catch outside the area, a back pass caught) called against each side, the mean top speed of each side's field players (their
 heterogeneous types, m/cycle at full dashes), our CPU per cycle, relaunches, and the share of our body commands
 the server executed; then the series' totals. A match the server gave up in (a client too slow
 for synch mode, e.g. beside other work) is played again, up to --replays times. The opponent is never part of this repository: build it
@@ -282,7 +282,12 @@ def match_stats(rcg: Path, our_side: str) -> dict:
         "shots": [shots[our_side], shots[theirs]],
         "possession": [possession[our_side] / total, possession[theirs] / total],
         "offsides": [calls.get(f"offside_{our_side}", 0), calls.get(f"offside_{theirs}", 0)],
-        "faults": [sum(n for k, n in calls.items() if k.endswith(f"fault_{s}")) for s in (our_side, theirs)],
+        "faults": [
+            sum(
+                n for k, n in calls.items() if k.startswith(OFFENCES) and not k.startswith("offside_") and k.endswith(s)
+            )
+            for s in (f"_{our_side}", f"_{theirs}")
+        ],
         "speeds": top_speeds(rcg, our_side),
     }
 
@@ -424,7 +429,7 @@ def play(args: argparse.Namespace, n: int) -> dict:
 
 HEADER = (
     "| match | score | shots | possession | in the other's third | tackles hit/tried | idle at the ball | offsides |"
-    " faults | top speed | our CPU ms/cycle | relaunches | commands executed |\n"
+    " fouls, faults | top speed | our CPU ms/cycle | relaunches | commands executed |\n"
     "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 )
 
