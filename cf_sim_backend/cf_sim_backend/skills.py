@@ -244,9 +244,9 @@ def _tackle_for(world: World, me: SimPlayer, x: float, y: float) -> Step | None:
     )
     if not contested or tackle_failure(world, me) > TACKLE_SURE:
         return None
-    if me.x * me.side.sign < 0.0 and foul_risk(world, me, bodies_known=False):
+    if me.x * me.side.sign < 0.0 and foul_risk(world, me):
         # Against HELIOS base two such fouls in our area in one match were indirect free kicks
-        # there, and one was a goal 7 cycles later (session 63). The belief seldom knows his body.
+        # there, and one was a goal 7 cycles later (session 63).
         return None
     return Step([("tackle", norm_deg(direction_deg(b.x, b.y, x, y) - me.body))])
 

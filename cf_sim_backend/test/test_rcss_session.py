@@ -298,6 +298,17 @@ def test_a_goal_makes_the_pose_unknown_until_the_next_see():
     assert b.me.sigma < 1.0
 
 
+def test_the_skills_world_gives_a_man_whose_body_was_not_seen_the_way_he_runs():
+    """The foul check of a tackle reads an opponent's body (a man between the tackler and the ball,
+    facing its way, is fouled); a see tells it only for men near and in the view cone."""
+    b = _belief()
+    b.players[("HELIOS", 9)] = Track(5.0, 2.0, 0.6, 0.8, 1.0, 0)  # server frame: running down and right
+    b.players[("HELIOS", 8)] = Track(9.0, 2.0, 0.6, 0.8, 1.0, 0, body=30.0)
+    w = b.world()
+    assert w.player(Side.RIGHT, 9).body == pytest.approx(math.degrees(math.atan2(-0.8, 0.6)))  # y mirrored
+    assert w.player(Side.RIGHT, 8).body == pytest.approx(-30.0)  # seen: as seen
+
+
 def _pass_direction(b: Belief, true_velocity: tuple[float, float], to: tuple[float, float]) -> float:
     """Where (degrees, server frame) the pass skill's kick really sends the ball, given its true velocity."""
     session = PlayerSession("CF")

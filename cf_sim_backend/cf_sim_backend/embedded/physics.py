@@ -143,12 +143,12 @@ def tackle(world: World, p: SimPlayer, direction: float, rng: random.Random) -> 
     return True
 
 
-def foul_risk(world: World, tackler: SimPlayer, bodies_known: bool = True) -> list[SimPlayer]:
+def foul_risk(world: World, tackler: SimPlayer) -> list[SimPlayer]:
     """The opponents a tackle by ``tackler`` now may foul (rcssserver's Referee::checkFoul, a foul not
     meant): each has the ball in kicking reach and stands between the tackler and the ball (nearer
     than it, ahead within the two bodies' width), facing within 90 degrees of the ball's way from
-    the tackler (``bodies_known`` False: however he faces, as a belief that does not know). The
-    referee also asks that he dashed lately, and sees each with ``foul_detect_probability``.
+    the tackler. The referee also asks that he dashed lately, and sees each with
+    ``foul_detect_probability``.
     """
     b = world.ball
     ball_way = math.atan2(b.y - tackler.y, b.x - tackler.x)
@@ -162,7 +162,7 @@ def foul_risk(world: World, tackler: SimPlayer, bodies_known: bool = True) -> li
         aside = -dx * math.sin(ball_way) + dy * math.cos(ball_way)
         if math.hypot(dx, dy) > ball_dist or ahead < 0.0 or abs(aside) > 2 * world.params.player_size:
             continue
-        if bodies_known and abs(norm_deg(p.body - math.degrees(ball_way))) > 90.0:
+        if abs(norm_deg(p.body - math.degrees(ball_way))) > 90.0:
             continue
         out.append(p)
     return out

@@ -548,7 +548,8 @@ class Belief:
         for (team, number), t in self.players.items():
             whose = side if team == self.team else side.other
             if (whose, number) not in w.players:
-                body = -t.body if t.body is not None else 0.0
+                # Unseen, a man faces the way he runs (the skills' foul check reads it).
+                body = -t.body if t.body is not None else math.degrees(math.atan2(-t.vy, t.vx))
                 w.players[(whose, number)] = SimPlayer(
                     whose, number, t.x, -t.y, t.vx, -t.vy, body, 0.0, 8000.0, t.goalie
                 )
