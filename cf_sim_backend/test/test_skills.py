@@ -206,10 +206,10 @@ def test_an_intercept_tackles_a_ball_an_opponent_holds_towards_their_goal():
     assert skill.step(loose.world, me).commands[0][0] != "tackle"
 
 
-def test_in_our_half_no_tackle_through_a_man_as_rcssserver_would_call_a_foul():
-    # Right 9 stands between me and the ball at his feet, facing its way: in our half I do not tackle
-    # through him (a foul half the time), in theirs I do; facing me, he is no foul's victim.
-    for x, body, tackles in ((-20.0, 0.0, False), (20.0, 0.0, True), (-20.0, 180.0, True)):
+def test_near_our_goal_no_tackle_through_a_man_as_rcssserver_would_call_a_foul():
+    # Right 9 stands between me and the ball at his feet, facing its way: near our goal I do not
+    # tackle through him (a foul half the time), further out I do; facing me, he is no foul's victim.
+    for x, body, tackles in ((-35.0, 0.0, False), (-20.0, 0.0, True), (-35.0, 180.0, True)):
         sim = sim_with((Side.LEFT, 2, x, 0.0, 0.0), (Side.RIGHT, 9, x + 0.8, 0.0, body))
         w = sim.world
         w.ball.x, w.ball.y = x + 1.4, 0.0
