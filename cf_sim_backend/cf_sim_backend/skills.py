@@ -232,8 +232,8 @@ class TurnTo(Skill):
 
 
 TACKLE_SURE = 0.2  # the most failure chance worth a tackle (it holds the tackler for tackle_cycles)
-# m from our goal: a foul there is an indirect free kick in our penalty area or a free kick within
-# shooting range. Refused in all our half, a tackle through a man cut our tackles against HELIOS
+# m from our goal (and all our penalty area): a foul there is an indirect free kick in our penalty
+# area or a free kick within shooting range. Refused in all our half, a tackle through a man cut our tackles against HELIOS
 # base from about 19 to 8 a match, where fouls of ours were 1-3 a match (session 63).
 FOUL_FREE_RANGE = 25.0
 
@@ -249,7 +249,7 @@ def _tackle_for(world: World, me: SimPlayer, x: float, y: float) -> Step | None:
     if not contested or tackle_failure(world, me) > TACKLE_SURE:
         return None
     near_our_goal = distance(me.x, me.y, -me.side.sign * world.params.field_length / 2, 0.0) <= FOUL_FREE_RANGE
-    if near_our_goal and foul_risk(world, me):
+    if (near_our_goal or in_own_penalty_area(world, me)) and foul_risk(world, me):
         # Against HELIOS base two such fouls in our area in one match were indirect free kicks
         # there, and one was a goal 7 cycles later (session 63).
         return None

@@ -209,10 +209,12 @@ def test_an_intercept_tackles_a_ball_an_opponent_holds_towards_their_goal():
 def test_near_our_goal_no_tackle_through_a_man_as_rcssserver_would_call_a_foul():
     # Right 9 stands between me and the ball at his feet, facing its way: near our goal I do not
     # tackle through him (a foul half the time), further out I do; facing me, he is no foul's victim.
-    for x, body, tackles in ((-35.0, 0.0, False), (-20.0, 0.0, True), (-35.0, 180.0, True)):
-        sim = sim_with((Side.LEFT, 2, x, 0.0, 0.0), (Side.RIGHT, 9, x + 0.8, 0.0, body))
+    # The corner of our penalty area, 25.3 m out, counts: a foul there is an indirect free kick.
+    cases = ((-35.0, 0.0, 0.0, False), (-20.0, 0.0, 0.0, True), (-35.0, 0.0, 180.0, True), (-37.0, 20.0, 0.0, False))
+    for x, y, body, tackles in cases:
+        sim = sim_with((Side.LEFT, 2, x, y, 0.0), (Side.RIGHT, 9, x + 0.8, y, body))
         w = sim.world
-        w.ball.x, w.ball.y = x + 1.4, 0.0
+        w.ball.x, w.ball.y = x + 1.4, y
         skill, me = skill_of(sim, Side.LEFT, 2, exec_("intercept", "", 2))
         assert (skill.step(w, me).commands[0][0] == "tackle") is tackles, x
 
