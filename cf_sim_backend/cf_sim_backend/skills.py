@@ -233,8 +233,9 @@ class TurnTo(Skill):
 
 TACKLE_SURE = 0.2  # the most failure chance worth a tackle (it holds the tackler for tackle_cycles)
 # m from our goal (and all our penalty area): a foul there is an indirect free kick in our penalty
-# area or a free kick within shooting range. Refused in all our half, a tackle through a man cut our tackles against HELIOS
-# base from about 19 to 8 a match, where fouls of ours were 1-3 a match (session 63).
+# area or a free kick within shooting range. Refused in all our half, a tackle through a man cut
+# our tackles against HELIOS base from about 19 to 8 a match, where fouls of ours were 1-3 a match
+# (session 63).
 FOUL_FREE_RANGE = 25.0
 
 

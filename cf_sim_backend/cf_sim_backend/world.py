@@ -152,9 +152,8 @@ class SimPlayer:
     ptype: int = 0  # heterogeneous player type (World.types)
     kicks: int = 0  # kicks that reached the ball
     frozen: int = 0  # cycles left in which a tackle keeps the player from any body command
-    dashed_at: int = (
-        -10
-    )  # the cycle of his last dash (rcssserver calls a tackle through a man who dashed lately a foul)
+    # The cycle of his last dash: rcssserver calls a tackle through a man who dashed lately a foul.
+    dashed_at: int = -10
     # The commands the simulator carried out, counted as rcssserver counts them (by COUNTED): a kick
     # once it reached the ball, a tackle whether it hit or not.
     counts: list[int] = field(default_factory=lambda: [0] * len(COUNTED))
