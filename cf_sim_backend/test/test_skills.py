@@ -209,10 +209,17 @@ def test_an_intercept_tackles_a_ball_an_opponent_holds_towards_their_goal():
 def test_near_our_goal_no_tackle_through_a_man_as_rcssserver_would_call_a_foul():
     # Right 9 stands between me and the ball at his feet, facing its way: near our goal I do not
     # tackle through him (a foul half the time), further out I do; facing me, he is no foul's victim.
-    # The corner of our penalty area, 25.3 m out, counts: a foul there is an indirect free kick.
-    cases = ((-35.0, 0.0, 0.0, False), (-20.0, 0.0, 0.0, True), (-35.0, 0.0, 180.0, True), (-37.0, 20.0, 0.0, False))
-    for x, y, body, tackles in cases:
-        sim = sim_with((Side.LEFT, 2, x, y, 0.0), (Side.RIGHT, 9, x + 0.8, y, body))
+    # The corner of our penalty area, 25.3 m out, counts: a foul there is an indirect free kick. A man
+    # 0.8 m off the way to the ball (0.2 m outside the referee's place) counts too: beliefs err.
+    cases = (
+        (-35.0, 0.0, 0.0, 0.0, False),
+        (-20.0, 0.0, 0.0, 0.0, True),
+        (-35.0, 0.0, 0.0, 180.0, True),
+        (-37.0, 20.0, 0.0, 0.0, False),
+        (-35.0, 0.0, 0.8, 0.0, False),
+    )
+    for x, y, aside, body, tackles in cases:
+        sim = sim_with((Side.LEFT, 2, x, y, 0.0), (Side.RIGHT, 9, x + 0.8, y + aside, body))
         w = sim.world
         w.ball.x, w.ball.y = x + 1.4, y
         skill, me = skill_of(sim, Side.LEFT, 2, exec_("intercept", "", 2))

@@ -143,12 +143,12 @@ def tackle(world: World, p: SimPlayer, direction: float, rng: random.Random) -> 
     return True
 
 
-def foul_risk(world: World, tackler: SimPlayer) -> list[SimPlayer]:
+def foul_risk(world: World, tackler: SimPlayer, margin: float = 0.0) -> list[SimPlayer]:
     """The opponents a tackle by ``tackler`` now may foul (rcssserver's Referee::checkFoul, a foul not
     meant): each has the ball in kicking reach and stands between the tackler and the ball (nearer
     than it, ahead within the two bodies' width), facing within 90 degrees of the ball's way from
     the tackler. The referee also asks that he dashed lately, and sees each with
-    ``foul_detect_probability``.
+    ``foul_detect_probability``. ``margin`` (m) widens the place he stands in, for a belief's error.
     """
     b = world.ball
     ball_way = math.atan2(b.y - tackler.y, b.x - tackler.x)
@@ -160,7 +160,11 @@ def foul_risk(world: World, tackler: SimPlayer) -> list[SimPlayer]:
         dx, dy = p.x - tackler.x, p.y - tackler.y
         ahead = dx * math.cos(ball_way) + dy * math.sin(ball_way)
         aside = -dx * math.sin(ball_way) + dy * math.cos(ball_way)
-        if math.hypot(dx, dy) > ball_dist or ahead < 0.0 or abs(aside) > 2 * world.params.player_size:
+        if (
+            math.hypot(dx, dy) > ball_dist + margin
+            or ahead < -margin
+            or abs(aside) > 2 * world.params.player_size + margin
+        ):
             continue
         if abs(norm_deg(p.body - math.degrees(ball_way))) > 90.0:
             continue
