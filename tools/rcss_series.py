@@ -208,7 +208,8 @@ def moves_of(frames: list, our_side: str) -> list[list[int]]:
     return out
 
 
-OFFENCES = ("foul_", "back_pass_", "free_kick_fault_", "catch_fault_", "offside_", "illegal_defense_")  # X_l: by l
+FAULTS = ("foul_", "back_pass_", "free_kick_fault_", "catch_fault_", "illegal_defense_")  # X_l: by l
+OFFENCES = (*FAULTS, "offside_")
 TOUCH_SPEED = 1.2  # m/cycle: a kick leaving slower than this is a touch (a dribble's push, a collecting touch)
 
 
@@ -283,10 +284,7 @@ def match_stats(rcg: Path, our_side: str) -> dict:
         "possession": [possession[our_side] / total, possession[theirs] / total],
         "offsides": [calls.get(f"offside_{our_side}", 0), calls.get(f"offside_{theirs}", 0)],
         "faults": [
-            sum(
-                n for k, n in calls.items() if k.startswith(OFFENCES) and not k.startswith("offside_") and k.endswith(s)
-            )
-            for s in (f"_{our_side}", f"_{theirs}")
+            sum(n for k, n in calls.items() if k.startswith(FAULTS) and k.endswith(f"_{s}")) for s in (our_side, theirs)
         ],
         "speeds": top_speeds(rcg, our_side),
     }
