@@ -17,11 +17,12 @@ What it does, in order:
   best open team-mate ahead (or play a through ball behind their last line),
   never to one offside, else carry it at full speed on an open run; else,
   in our half, a safe pass losing at most 3 m, received outside our penalty
-  area, else clear it long; in theirs, shoot when within
-  LONG_SHOT_RANGE, else a safe pass to a team-mate within that range and
+  area, else clear it long; in theirs, within LONG_SHOT_RANGE drive at goal
+  at close control on a way with room (from beyond CLOSE_SHOT), else shoot;
+  else a safe pass to a team-mate within that range and
   nearer the goal (a set-up), else a safe pass that loses no ground, else kick it into
-  space a team-mate reaches first, else dribble into space, else any safe
-  pass, else take it on towards the goal;
+  space a team-mate reaches first, else within DRIVE_RANGE drive at goal, else
+  dribble into space, else any safe pass, else take it on towards the goal;
 - at our set piece the player with the ball first looks for the opponents near
   it he has not seen lately; then he passes (backwards if need be) or
   kicks long, never dribbles, and then leaves the ball to others until

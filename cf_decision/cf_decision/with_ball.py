@@ -30,6 +30,12 @@ from .situation import (
 SHOOT_RANGE = 22.0  # at a set piece, shoot from within this distance
 SHOT_RANGE = 30.0  # in play, consider shots from within this distance
 LONG_SHOT_RANGE = 25.0  # in play, with nothing better, shoot anyway from within this distance
+# Against HELIOS base every shot from 17 m or further that reached the goal line was caught or went
+# wide, and one from 15.8 m went in (docs/performance.md, session 62): from further out, with room,
+# the ball is carried nearer first.
+CLOSE_SHOT = 16.0  # m: a hopeful shot from further than this waits for a drive at goal with room
+DRIVE_GAIN = 4.0  # m: a drive at goal ends at least this much nearer the goal
+DRIVE_RANGE = 35.0  # m: a carry this near the goal takes a way towards it, if one has room
 SET_UP_GAIN = 3.0  # m: a pass that sets up a shot is received at least this much nearer the goal
 SHOT_SPEED = 2.4  # m/cycle a shot is assumed to leave the foot with
 WIN_PASS_GAIN = 5.0  # m: a ball won in our half is passed on only this far up the field or further
@@ -316,6 +322,17 @@ def roomiest(ways: list[Way]) -> tuple[float, float] | None:
     return max(ways, key=lambda way: way[1])[0] if ways else None  # max keeps the first of equals
 
 
+def goal_drive(
+    ways: list[Way], ball: tuple[float, float], within: float = LONG_SHOT_RANGE
+) -> tuple[float, float] | None:
+    """From further than CLOSE_SHOT, the free way with the most room of those that end DRIVE_GAIN
+    nearer the goal (a close-control dribble into shooting range), if any."""
+    to_goal = dist(ball, GOAL)
+    if not CLOSE_SHOT < to_goal <= within:
+        return None
+    return roomiest([way for way in ways if dist(way[0], GOAL) <= to_goal - DRIVE_GAIN])
+
+
 def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decision:
     """What the player with the ball at his feet does with it (the order is in policy.py's docstring)."""
     mode = play_mode(state)
@@ -343,6 +360,9 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
         aim, _ = best_clearance(state, ball)
         return Decision("pass", act.Pass(target=point(*aim), power=100.0), "clear the ball")
     if dist(ball, GOAL) <= LONG_SHOT_RANGE:
+        drive = goal_drive(ways, ball)
+        if drive is not None:
+            return Decision("dribble", act.Dribble(target=point(*drive), speed=70.0), "drive at goal")
         # Near their goal every other way was lost nearly every time: a shot at least may go in.
         target, _ = shot_margin(state, ball)
         return Decision("shoot", act.Shoot(target=point(*target), power=100.0), "a hopeful shot")
@@ -361,6 +381,11 @@ def with_ball(state: WorldState, number: int, me: tuple[float, float]) -> Decisi
     if kept:
         # A close-control dribble here kept the ball about one time in ten (docs/decision.md).
         return Decision("pass", act.Pass(target=point(*aim), power=100.0), "kick it into space for a team-mate")
+    drive = goal_drive(ways, ball, DRIVE_RANGE)
+    if drive is not None:
+        # The roomiest way from the wing runs along the touch line to their corner flag, 33 m from
+        # goal, where HELIOS base took the ball back (kick-off drills, docs/performance.md, session 64).
+        return Decision("dribble", act.Dribble(target=point(*drive), speed=70.0), "drive at goal from further out")
     space = roomiest(ways)
     if space is not None:
         # At close control the way is chosen for room: the straightest, into a block of men 10 m

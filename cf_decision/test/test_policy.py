@@ -426,6 +426,30 @@ def test_near_their_goal_with_nothing_better_shoot_away_from_the_keeper():
     assert corner.method == "shoot" and corner.action.target.y > 0.0  # a set piece's shot: away from him too
 
 
+def test_from_further_than_a_close_shot_with_room_drive_at_goal_before_the_hopeful_shot():
+    keeper, back = opp(1, 51.0, 0.0, goalie=True), opp(2, 42.0, 2.0)  # a man 11 m on: no open run, but room
+    st = state((32.0, 8.0), ball=(32.5, 8.0), players=[keeper, back])
+    assert best_shot(st, (32.5, 8.0)) is None
+    d = decide(st, 9, 11, {})
+    assert d.method == "dribble" and d.why == "drive at goal" and d.action.speed < 100.0  # close control
+    to_goal = math.dist((d.action.target.x, d.action.target.y), (52.5, 0.0))
+    assert to_goal <= math.dist((32.5, 8.0), (52.5, 0.0)) - 4.0
+    close = state((39.0, 5.0), ball=(39.5, 5.0), players=[keeper, opp(2, 45.0, 1.0)])  # 14 m out: shoot
+    assert decide(close, 9, 11, {}).why in ("a hopeful shot", "a free shot")
+    pressed = state((32.0, 8.0), ball=(32.5, 8.0), players=[keeper, opp(2, 34.5, 7.0), opp(3, 34.0, 10.0)])
+    assert decide(pressed, 9, 11, {}).why == "a hopeful shot"  # no room: the shot at least may go in
+
+
+def test_by_their_corner_flag_the_carry_takes_a_way_towards_goal_not_along_the_touch_line():
+    # A man 10 m off in both ways towards goal: the roomiest way runs along the touch line.
+    keeper, inside = opp(1, 51.0, 0.0, goalie=True), opp(2, 47.0, -21.0)
+    st = state((40.0, -29.0), ball=(40.5, -29.0), players=[keeper, inside])
+    d = decide(st, 11, 11, {})
+    assert d.method == "dribble" and d.why == "drive at goal from further out"
+    to_goal = math.dist((d.action.target.x, d.action.target.y), (52.5, 0.0))
+    assert to_goal <= math.dist((40.5, -29.0), (52.5, 0.0)) - 4.0
+
+
 def test_at_an_indirect_free_kick_near_their_goal_a_team_mate_touches_it_before_any_shot():
     # HELIOS base's back pass (session 63): our free kick 10.8 m out, their men on the goal line.
     line = [opp(1, 52.1, 0.0, goalie=True), *(opp(n, 52.3, y) for n, y in ((2, 5.3), (3, 2.7), (4, -3.3)))]
