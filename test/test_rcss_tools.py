@@ -16,7 +16,17 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from proctree import run_passing_on
-from rcss_ball_use import ball_use, game_log, keeping_table, moves_table, reason, table, territory, territory_table
+from rcss_ball_use import (
+    ball_use,
+    game_log,
+    keeping_table,
+    moves_table,
+    reason,
+    table,
+    territory,
+    territory_table,
+    zone,
+)
 from rcss_belief_error import errors as belief_errors
 from rcss_belief_error import line_errors
 from rcss_belief_error import line_table as believed_line_table
@@ -111,6 +121,16 @@ def test_every_kick_of_ours_is_put_down_to_its_reason_and_judged_by_the_next_kic
     assert passed.contested_kept + passed.contested_lost == 0  # PYRUS 3 stood 8 m from the ball
     text = table(use, 3)
     assert "| forward pass to team-mate | their half | 1 | 1 | 0 | 100% | 0 of 0 | +3.0 |" in text
+
+
+def test_kicks_are_split_where_asked_instead_of_at_the_halfway_line(tmp_path):
+    use = ball_use(write_match(tmp_path), "CF", after=3, beyond=20.0)
+    assert set(use) == {("forward pass to team-mate", "short of 20 m"), ("space ahead: carry it", "beyond 20 m")}
+    assert (use[("space ahead: carry it", "beyond 20 m")].lost, zone(-5.0), zone(25.0, 20.0)) == (
+        1,
+        "our half",
+        "beyond 20 m",
+    )
 
 
 def test_a_kick_with_an_opponent_at_the_ball_is_counted_apart(tmp_path):

@@ -1,12 +1,13 @@
 """What our players did with the ball on rcssserver, and what came of it: one table row per reason.
 
-    python tools/rcss_ball_use.py MATCH_DIR [MATCH_DIR ...] [--team CF] [--after 30]
+    python tools/rcss_ball_use.py MATCH_DIR [MATCH_DIR ...] [--team CF] [--after 30] [--beyond X]
 
 A MATCH_DIR is what ``tools/rcss_match.py --game-log --out DIR`` writes (``rcss_series``: its
 ``match-N``): the server's game log (``*.rcg``) and our players' logs, where each decision
 component logs every new way of playing the ball (``[CF_9_decision]: t=314 pass: forward pass
 to team-mate 10``). Each kick of ours in play is put down to the reason its player's decision
-last logged (within ``--after`` cycles before it; "?" if none), in our half or theirs, and judged
+last logged (within ``--after`` cycles before it; "?" if none), in our half or theirs (``--beyond X``:
+beyond X m up the field from the halfway line or short of it, e.g. 30 for their goal's end), and judged
 by the next kick: a team-mate's (kept) or an opponent's (lost); the kicker's own next touch
 (a dribble's next push, a collecting touch) is not counted. A column says how many of those kicks
 had an opponent at the ball (within CONTESTED of it the cycle before: his kick or tackle meets
@@ -121,8 +122,11 @@ def game(match: Path, team: str, counters: bool = False) -> tuple[list, str, flo
     return read_rcg(rcg, counters), side, 1.0 if side == "l" else -1.0
 
 
-def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, str], Outcome]:
-    """(reason, "our half" | "their half") -> what came of our kicks in play in one match."""
+def ball_use(
+    match: Path, team: str = "CF", after: int = 30, beyond: float | None = None
+) -> dict[tuple[str, str], Outcome]:
+    """(reason, where) -> what came of our kicks in play in one match; where: "our half" | "their half",
+    or with ``beyond``, "beyond X m" | "short of X m" (metres up the field from the halfway line)."""
     frames, side, forward = game(match, team)
     said = decisions(match, team)
     out: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
@@ -131,7 +135,7 @@ def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, 
         if s != side or mode != "play_on" or (s2, number2) == (s, number):
             continue
         before = [why for when, why in said.get(number, []) if t - after <= when <= t]
-        half = "our half" if forward * x < 0 else "their half"
+        half = zone(forward * x, beyond)
         o = out[(before[-1] if before else "?", half)]
         kept = s2 == side
         o.kept, o.lost = o.kept + kept, o.lost + (not kept)
@@ -139,6 +143,14 @@ def ball_use(match: Path, team: str = "CF", after: int = 30) -> dict[tuple[str, 
             o.contested_kept, o.contested_lost = o.contested_kept + kept, o.contested_lost + (not kept)
         o.advance.append(forward * (frames[min(len(frames) - 1, i + after)][2][0] - ball[0]))
     return out
+
+
+def zone(x: float, beyond: float | None = None) -> str:
+    """Where a kick ``x`` m up the field from the halfway line was taken: our half or theirs, or
+    beyond ``beyond`` m or short of it."""
+    if beyond is None:
+        return "our half" if x < 0 else "their half"
+    return f"beyond {beyond:g} m" if x > beyond else f"short of {beyond:g} m"
 
 
 def contested(frame: tuple, our_side: str) -> bool:
@@ -228,6 +240,9 @@ def match_parser(doc: str) -> argparse.ArgumentParser:
 def main() -> int:
     ap = match_parser(__doc__)
     ap.add_argument("--after", type=int, default=30, help="cycles: how long a reason holds, when the advance is read")
+    ap.add_argument(
+        "--beyond", type=float, help="m up the field from the halfway line: the first table splits there, not at halves"
+    )
     args = ap.parse_args()
     total: dict[tuple[str, str], Outcome] = defaultdict(Outcome)
     where = {"us": Territory(), "them": Territory()}
@@ -239,7 +254,7 @@ def main() -> int:
         reached = [
             [a + b for a, b in zip(r, m, strict=True)] for r, m in zip(reached, moves(match, args.team), strict=True)
         ]
-        for key, o in ball_use(match, args.team, args.after).items():
+        for key, o in ball_use(match, args.team, args.after, args.beyond).items():
             total[key].add(o)
         for key, t in territory(match, args.team).items():
             where[key].held = [a + b for a, b in zip(where[key].held, t.held, strict=True)]
