@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from cf_lang.ontology import FIELD, PlayMode, Team, WorldState
+from cf_lang.ontology import FIELD, Ball, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
 from . import reach
@@ -25,9 +25,14 @@ from .with_ball import best_clearance, in_our_box, set_piece_kick
 KEEPER_SLACK = 0.7  # m from his guard spot within which he stays (the moveTo skill's own tolerance)
 RUSH_DISTANCE = 14.0  # m from our goal: an opponent with the ball this close is closed down by the keeper
 CATCH_REACH = 1.2  # m: rcssserver's catchable_area_l
+# rcssserver bounds a catch's direction to 90 degrees either side of the body (min/max_catch_angle):
+# a ball further round cannot be caught. Against HELIOS base two of seven goals came through such
+# catches, asked for at 128 and 169 degrees, with the ball within his reach (session 66).
+CATCH_ANGLE = math.radians(90.0)
 MATE_NEAR = 3.0  # m: a team-mate this close to the ball, and nearer than any opponent, may have played it
 SHOT_PACE = 1.0  # m/cycle: a ball at least this fast, rolling into our goal, is a shot
 POST_MARGIN = 1.0  # m outside a post: a ball rolling that close by it is a shot all the same (noise)
+FACE_BALL = math.radians(60.0)  # at his spot he faces a ball further round than this from up the field
 
 
 def goalkeeper(
@@ -40,7 +45,7 @@ def goalkeeper(
         in_area = in_our_box(ball)
         mode = play_mode(state)
         may_catch = in_area and mode is PlayMode.PLAY_ON and not mate_touched and not mates_ball(state, ball)
-        if may_catch and d <= CATCH_REACH:
+        if may_catch and d <= CATCH_REACH and abs(off_body(state, me, ball)) <= CATCH_ANGLE:
             # Caught, the ball is ours at a free kick; cleared in a hurry under pressure, it was lost:
             # 9 of HELIOS base's 47 goals in seven matches followed (docs/performance.md, session 32).
             return catch(state, me, ball)
@@ -68,6 +73,10 @@ def goalkeeper(
         # shots on target, and the spot reached 57 of 132 where he reached 44 (tools/rcss_keeper.py,
         # docs/performance.md, session 39).
         return Decision("moveTo", act.MoveTo(target=point(*spot), speed=100.0), "guard the goal")
+    if ball is not None and abs(math.atan2(ball[1] - me[1], ball[0] - me[0])) > FACE_BALL:
+        # Facing up the field, a ball played in from by our goal line came at his back, where he
+        # cannot catch it (CATCH_ANGLE).
+        return Decision("turnToObject", act.TurnToObject(obj=Ball()), "face the ball")
     return Decision("turnToDirection", act.TurnToDirection(direction=0.0), "face the field")
 
 
@@ -89,11 +98,15 @@ def into_our_goal(path: list[tuple[float, float]], margin: float = 0.0) -> int |
     return n
 
 
+def off_body(state: WorldState, me: tuple[float, float], ball: tuple[float, float]) -> float:
+    """The ball's direction from ``me``, in radians off the way the body faces (-pi..pi)."""
+    direction = math.atan2(ball[1] - me[1], ball[0] - me[0]) - (state.me.positioning.yaw or 0.0)
+    return math.atan2(math.sin(direction), math.cos(direction))
+
+
 def catch(state: WorldState, me: tuple[float, float], ball: tuple[float, float]) -> Decision:
     """Catch the ball, turned towards it as the body faces."""
-    direction = math.atan2(ball[1] - me[1], ball[0] - me[0]) - (state.me.positioning.yaw or 0.0)
-    direction = math.atan2(math.sin(direction), math.cos(direction))
-    return Decision("catch", act.Catch(direction=direction), "ball in reach")
+    return Decision("catch", act.Catch(direction=off_body(state, me, ball)), "ball in reach")
 
 
 def mates_ball(state: WorldState, ball: tuple[float, float]) -> bool:

@@ -8,11 +8,12 @@ team-mates said (who goes for the ball). Output is an ontology action for
 What it does, in order:
 - before a kick-off: take the kick-off position (the formation, wide forwards
   out wide), and keep it at our kick-off until the ball is played;
-- goalkeeper: catch a ball in reach in his area unless a team-mate touched it
-  last (a back pass), take the free kick that follows as a set piece, else
-  clear a kickable ball, close down an opponent through on goal, else guard
-  the goal on the line between ball and goal centre, further out the further
-  the ball;
+- goalkeeper: catch a ball in reach in his area, within 90 degrees of his
+  body, unless a team-mate touched it last (a back pass), take the free kick
+  that follows as a set piece, else clear a kickable ball, close down an
+  opponent through on goal, else guard the goal on the line that halves the
+  angle the ball sees it under, further out the further the ball, facing a
+  ball out wide by our goal line;
 - with the ball: shoot when close enough with a free line, else pass to the
   best open team-mate ahead (or play a through ball behind their last line),
   never to one offside, else carry it at full speed on an open run; else,

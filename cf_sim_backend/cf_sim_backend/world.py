@@ -75,6 +75,7 @@ class Params:
     stamina_inc_max: float = 45.0
     catchable_area: float = 1.3
     catchable_area_l_stretch: float = 1.0  # a heterogeneous goalkeeper's longer catch
+    max_catch_angle: float = 90.0  # degrees off the body a catch may go (rcssserver bounds it there)
     tackle_dist: float = 2.0
     tackle_width: float = 1.25
     tackle_exponent: float = 6.0

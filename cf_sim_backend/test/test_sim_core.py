@@ -223,6 +223,19 @@ def test_offside():
     assert "offside l 9" in events and w.mode == "free_kick_r"
 
 
+def test_a_goalkeeper_cannot_catch_a_ball_behind_him():
+    # rcssserver bounds a catch to 90 degrees off the body (min/max_catch_angle): a keeper facing up
+    # the field does not catch a ball at his back, however near; turned to it, he does.
+    for body, caught in ((0.0, False), (180.0, True)):
+        sim = sim_with((Side.LEFT, 1, -51.0, 0.0, body), (Side.RIGHT, 9, -30.0, 0.0, 0.0))
+        w = sim.world
+        w.ball.x, w.ball.y, w.ball.vx, w.ball.vy = -51.8, 0.3, 0.0, 0.0
+        w.last_touch = (Side.RIGHT, 9)
+        sim.command(Side.LEFT, 1, "catch", 180.0 - body - math.degrees(math.atan2(0.3, 0.8)))
+        sim.step()
+        assert (w.mode == "free_kick_l") is caught, w.mode
+
+
 def test_a_back_pass_caught_is_an_indirect_free_kick_that_scores_only_after_a_second_touch():
     # Right 4 passes back to his goalkeeper, who catches it in his goal area: as in rcssserver, an
     # indirect free kick to the left side, on the goal area's front line.

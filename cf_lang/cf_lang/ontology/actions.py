@@ -91,7 +91,7 @@ class Tackle(Concept):
 
 
 class Catch(Concept):
-    """Goalkeeper only: catch the ball in this direction."""
+    """Goalkeeper only: catch the ball in this direction from the body, at most 90 degrees either side (rcssserver's)."""
 
     direction: float = Angle
 

@@ -97,10 +97,12 @@ def kick(world: World, p: SimPlayer, power: float, direction: float, rng: random
 
 
 def catch(world: World, p: SimPlayer, direction: float) -> bool:
-    """A goalkeeper in its own penalty area catches a ball in reach in that direction."""
+    """A goalkeeper in its own penalty area catches a ball in reach in that direction (bounded to
+    max_catch_angle off his body, as rcssserver bounds it: a ball behind him is not caught)."""
     prm = world.params_of(p)
     if not p.goalie or not in_own_penalty_area(world, p):
         return False
+    direction = max(-prm.max_catch_angle, min(prm.max_catch_angle, direction))
     if ball_distance(world, p) > prm.catchable_area * prm.catchable_area_l_stretch:
         return False
     ball_dir = direction_deg(p.x, p.y, world.ball.x, world.ball.y)
