@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from cf_lang.ontology import FIELD, Ball, PlayMode, Team, WorldState
+from cf_lang.ontology import FIELD, PlayMode, Team, WorldState
 from cf_lang.ontology import actions as act
 
 from . import reach
@@ -32,7 +32,6 @@ CATCH_ANGLE = math.radians(90.0)
 MATE_NEAR = 3.0  # m: a team-mate this close to the ball, and nearer than any opponent, may have played it
 SHOT_PACE = 1.0  # m/cycle: a ball at least this fast, rolling into our goal, is a shot
 POST_MARGIN = 1.0  # m outside a post: a ball rolling that close by it is a shot all the same (noise)
-FACE_BALL = math.radians(60.0)  # at his spot he faces a ball further round than this from up the field
 
 
 def goalkeeper(
@@ -73,10 +72,6 @@ def goalkeeper(
         # shots on target, and the spot reached 57 of 132 where he reached 44 (tools/rcss_keeper.py,
         # docs/performance.md, session 39).
         return Decision("moveTo", act.MoveTo(target=point(*spot), speed=100.0), "guard the goal")
-    if ball is not None and abs(math.atan2(ball[1] - me[1], ball[0] - me[0])) > FACE_BALL:
-        # Facing up the field, a ball played in from by our goal line came at his back, where he
-        # cannot catch it (CATCH_ANGLE).
-        return Decision("turnToObject", act.TurnToObject(obj=Ball()), "face the ball")
     return Decision("turnToDirection", act.TurnToDirection(direction=0.0), "face the field")
 
 

@@ -12,8 +12,7 @@ What it does, in order:
   body, unless a team-mate touched it last (a back pass), take the free kick
   that follows as a set piece, else clear a kickable ball, close down an
   opponent through on goal, else guard the goal on the line that halves the
-  angle the ball sees it under, further out the further the ball, facing a
-  ball out wide by our goal line;
+  angle the ball sees it under, further out the further the ball;
 - with the ball: shoot when close enough with a free line, else pass to the
   best open team-mate ahead (or play a through ball behind their last line),
   never to one offside, else carry it at full speed on an open run; else,

@@ -267,7 +267,7 @@ def test_goalkeeper_guards_catches_clears():
     assert near.method == "moveTo" and -49.0 < spot[0] < -46.0 and 2.0 < spot[1] < 4.0  # towards the ball
 
 
-def test_the_goalkeeper_catches_only_within_the_servers_catch_angle_and_faces_a_ball_from_the_side():
+def test_the_goalkeeper_catches_only_within_the_servers_catch_angle():
     # HELIOS base's ball from by our goal line came at his back: he asked to catch it 128 and 169
     # degrees off his body, which rcssserver bounds to 90, and it went in (session 66).
     keeper, shooter = dict(number=1), [opp(9, -46.0, -12.0)]
@@ -276,12 +276,6 @@ def test_the_goalkeeper_catches_only_within_the_servers_catch_angle_and_faces_a_
     assert d.method == "pass" and d.why == "clear the ball"  # kickable at any angle: not a catch
     turned = behind.model_copy(update={"me": behind.me.model_copy(update={"positioning": at(-51.9, 6.2, math.pi)})})
     assert decide(turned, 1, 11, {}).method == "catch"
-    # At his spot, with the ball out on the wing by our goal line, he turns to it, not up the field.
-    wing = (-48.0, -25.0)
-    d = decide(state(guard_spot(wing), ball=wing, **keeper), 1, 11, {})
-    assert d.method == "turnToObject" and d.why == "face the ball"
-    ahead = (-30.0, 5.0)
-    assert decide(state(guard_spot(ahead), ball=ahead, **keeper), 1, 11, {}).why == "face the field"
 
 
 def off_line(point, a, b):
