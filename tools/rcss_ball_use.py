@@ -135,8 +135,8 @@ def ball_use(
         if s != side or mode != "play_on" or (s2, number2) == (s, number):
             continue
         before = [why for when, why in said.get(number, []) if t - after <= when <= t]
-        half = zone(forward * x, beyond)
-        o = out[(before[-1] if before else "?", half)]
+        where = zone(forward * x, beyond)
+        o = out[(before[-1] if before else "?", where)]
         kept = s2 == side
         o.kept, o.lost = o.kept + kept, o.lost + (not kept)
         if contested(frames[max(0, i - 1)], side):
