@@ -981,8 +981,14 @@ def test_each_shot_of_ours_tells_its_touches_speed_aim_where_it_crosses_and_what
     assert goal.cross == pytest.approx(2.0 + math.tan(way) * 17.5)
     assert (caught.number, caught.touches, caught.outcome) == (10, 0, "keeper")
     assert caught.speed == pytest.approx(2.0) and caught.cross == pytest.approx(0.0)
+    seen = math.degrees(math.atan2(7.01 - 2.0, 17.5) + math.atan2(7.01 + 2.0, 17.5))  # between the posts
+    assert goal.seen == pytest.approx(seen, abs=0.05) and caught.seen > seen  # (nearer, in the middle)
     rows = shots_table(found, missed)
-    assert rows[-1].startswith("\n2 shots (1 choices never kicked): 1 goals, 2 on a way between the posts")
+    assert rows[-2].startswith("\n2 shots (1 choices never kicked): 1 goals, 2 on a way between the posts")
+    assert rows[-1] == (
+        f"by distance: within 16 m: 1 shots, 0 goals (goal seen {caught.seen:.0f} degrees, median); "
+        f"16-20 m: 1 shots, 1 goals (goal seen {seen:.0f} degrees, median)"
+    )
 
 
 def _drill_out(path: Path, furthest: list[float]) -> Path:

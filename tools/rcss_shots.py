@@ -8,15 +8,19 @@ A MATCH_DIR is what ``tools/rcss_match.py --game-log --out DIR`` writes (``rcss_
 every decision logs for a new way of playing the ball) and the kicks its player made from then on
 (within WINDOW cycles, until anybody else kicked): the first touches, then the shot itself, the
 last of them. From the game log (each side's frame is its own: x towards the other's goal): the
-ball's speed as it left the foot, how far its way was off the aim, where on their goal line that
-way would cross it (the posts are at +-7.01 m), and what came next: a goal, their goalkeeper's
+ball's speed as it left the foot, how far its way was off the aim, how wide the goal looked from
+where it was kicked (the angle between the posts), where on their goal line that way would cross it
+(the posts are at +-7.01 m), and what came next: a goal, their goalkeeper's
 catch or kick ("keeper"), another of theirs ("blocked"), over their goal line ("wide", or
 "corner" off one of theirs), ours again, or nothing within FOLLOW cycles. A choice that never
-became a kick is counted apart (the ball was taken or went first).
+became a kick is counted apart (the ball was taken or went first). The totals split the shots by
+distance (BANDS): against HELIOS base one shot from 20-25 m went in of forty-three, two from within
+16 m of eight (docs/performance.md, session 67).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
 import statistics
@@ -37,6 +41,7 @@ FOLLOW = 60  # cycles after the shot within which what came of it is looked for
 KEEPER_HOLDS = 2.0  # m: at a free kick for them, their goalkeeper this near the ball had caught it
 POST_Y = Params().goal_width / 2  # m from the middle of the goal to a post
 DECAY = Params().ball_decay  # the game log's ball velocity has decayed once since the kick
+BANDS = (16.0, 20.0, 25.0)  # m from the goal's middle: the totals' distance bands
 _CHOICE = re.compile(r"\[(\w+?)_(\d+)_decision\]: t=(\d+) shoot: (.*?) @ target (\S+) (\S+) ")
 
 
@@ -48,6 +53,7 @@ class Shot:
     why: str  # the choice's reason, without "(the ball comes: N cycles)"
     touches: int  # kicks before the shot itself
     distance: float  # m from the middle of their goal, where the ball was kicked
+    seen: float  # degrees between the posts, seen from there
     speed: float  # m/cycle as it left the foot
     off: float  # degrees its way was off the aim (+: to the left of it)
     cross: float | None  # m from the middle where its way crosses their goal line (None: it goes back)
@@ -96,6 +102,7 @@ def shots(match: Path, team: str = "CF") -> tuple[list[Shot], int]:
                 why,
                 len(mine) - 1,
                 math.hypot(GOAL_X - x, y),
+                goal_seen(x, y),
                 math.hypot(vx, vy) / DECAY,
                 off,
                 cross,
@@ -103,6 +110,12 @@ def shots(match: Path, team: str = "CF") -> tuple[list[Shot], int]:
             )
         )
     return shots_found, missed
+
+
+def goal_seen(x: float, y: float) -> float:
+    """Degrees between their posts seen from (x, y) (their goal line at GOAL_X)."""
+    posts = (math.atan2(post - y, GOAL_X - x) for post in (POST_Y, -POST_Y))
+    return math.degrees(abs(math.remainder(next(posts) - next(posts), math.tau)))
 
 
 def outcome(frames: list, i: int, side: str) -> str:
@@ -139,14 +152,15 @@ def keeper(player: tuple) -> bool:
 def table(found: list[Shot], missed: int) -> list[str]:
     """The markdown rows: one per shot, then the totals."""
     rows = [
-        "| match | cycle | player | why | touches first | from (m) | speed (m/cycle) | off aim (deg) "
-        "| crosses at (m) | came of it |",
-        "|---|---:|---:|---|---:|---:|---:|---:|---:|---|",
+        "| match | cycle | player | why | touches first | from (m) | goal seen (deg) | speed (m/cycle) "
+        "| off aim (deg) | crosses at (m) | came of it |",
+        "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|",
     ]
     for s in found:
         cross = "-" if s.cross is None else f"{s.cross:+.1f}"
         rows.append(
-            f"| {s.match} | {s.time} | {s.number} | {s.why} | {s.touches} | {s.distance:.1f} | {s.speed:.2f} "
+            f"| {s.match} | {s.time} | {s.number} | {s.why} | {s.touches} | {s.distance:.1f} | {s.seen:.0f} "
+            f"| {s.speed:.2f} "
             f"| {s.off:+.1f} | {cross} | {s.outcome} |"
         )
     if found:
@@ -158,7 +172,29 @@ def table(found: list[Shot], missed: int) -> list[str]:
             f"\n{len(found)} shots ({missed} choices never kicked): {goals} goals, {on} on a way between the "
             f"posts; speed median {speeds:.2f} m/cycle, off aim median {off:.1f} degrees"
         )
+        rows.append(by_distance(found))
     return rows
+
+
+def by_distance(found: list[Shot]) -> str:
+    """Shots and goals in each distance band, with the median angle the goal was seen under."""
+    edges = (0.0, *BANDS, math.inf)
+    parts = []
+    for near, far in itertools.pairwise(edges):
+        band = [s for s in found if near <= s.distance < far]
+        if not band:
+            continue
+        name = (
+            f"within {far:.0f} m"
+            if near == 0.0
+            else f"beyond {near:.0f} m"
+            if far == math.inf
+            else f"{near:.0f}-{far:.0f} m"
+        )
+        seen = statistics.median(s.seen for s in band)
+        goals = sum(s.outcome == "goal" for s in band)
+        parts.append(f"{name}: {len(band)} shots, {goals} goals (goal seen {seen:.0f} degrees, median)")
+    return "by distance: " + "; ".join(parts)
 
 
 def main() -> int:
