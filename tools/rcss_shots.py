@@ -114,8 +114,8 @@ def shots(match: Path, team: str = "CF") -> tuple[list[Shot], int]:
 
 def goal_seen(x: float, y: float) -> float:
     """Degrees between their posts seen from (x, y) (their goal line at GOAL_X)."""
-    posts = (math.atan2(post - y, GOAL_X - x) for post in (POST_Y, -POST_Y))
-    return math.degrees(abs(math.remainder(next(posts) - next(posts), math.tau)))
+    left, right = (math.atan2(post - y, GOAL_X - x) for post in (POST_Y, -POST_Y))
+    return math.degrees(abs(math.remainder(left - right, math.tau)))
 
 
 def outcome(frames: list, i: int, side: str) -> str:
