@@ -44,10 +44,11 @@ def goalkeeper(
         in_area = in_our_box(ball)
         mode = play_mode(state)
         may_catch = in_area and mode is PlayMode.PLAY_ON and not mate_touched and not mates_ball(state, ball)
-        if may_catch and d <= CATCH_REACH and abs(off_body(state, me, ball)) <= CATCH_ANGLE:
+        off = off_body(state, me, ball)
+        if may_catch and d <= CATCH_REACH and abs(off) <= CATCH_ANGLE:
             # Caught, the ball is ours at a free kick; cleared in a hurry under pressure, it was lost:
             # 9 of HELIOS base's 47 goals in seven matches followed (docs/performance.md, session 32).
-            return catch(state, me, ball)
+            return catch(off)
         if d <= KICKABLE:
             if mode in OUR_SET_PIECES:  # after a catch, or a goal kick: look, then pass or kick long
                 return set_piece_kick(state, me)
@@ -99,9 +100,9 @@ def off_body(state: WorldState, me: tuple[float, float], ball: tuple[float, floa
     return math.atan2(math.sin(direction), math.cos(direction))
 
 
-def catch(state: WorldState, me: tuple[float, float], ball: tuple[float, float]) -> Decision:
-    """Catch the ball, turned towards it as the body faces."""
-    return Decision("catch", act.Catch(direction=off_body(state, me, ball)), "ball in reach")
+def catch(direction: float) -> Decision:
+    """Catch the ball ``direction`` radians off the way the body faces (:func:`off_body`)."""
+    return Decision("catch", act.Catch(direction=direction), "ball in reach")
 
 
 def mates_ball(state: WorldState, ball: tuple[float, float]) -> bool:
