@@ -184,17 +184,19 @@ def by_distance(found: list[Shot]) -> str:
         band = [s for s in found if near <= s.distance < far]
         if not band:
             continue
-        name = (
-            f"within {far:.0f} m"
-            if near == 0.0
-            else f"beyond {near:.0f} m"
-            if far == math.inf
-            else f"{near:.0f}-{far:.0f} m"
-        )
         seen = statistics.median(s.seen for s in band)
         goals = sum(s.outcome == "goal" for s in band)
-        parts.append(f"{name}: {len(band)} shots, {goals} goals (goal seen {seen:.0f} degrees, median)")
+        parts.append(f"{band_name(near, far)}: {len(band)} shots, {goals} goals (goal seen {seen:.0f} degrees, median)")
     return "by distance: " + "; ".join(parts)
+
+
+def band_name(near: float, far: float) -> str:
+    """A distance band's name in the totals: "within 16 m", "16-20 m", "beyond 25 m"."""
+    if near == 0.0:
+        return f"within {far:.0f} m"
+    if far == math.inf:
+        return f"beyond {near:.0f} m"
+    return f"{near:.0f}-{far:.0f} m"
 
 
 def main() -> int:
